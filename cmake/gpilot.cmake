@@ -1,0 +1,39 @@
+# gpilot_add_test(NAME name SOURCES ... [LIBS ...] [LABELS ...] [NETNS] [TIMEOUT s])
+#   A GoogleTest executable registered with ctest. Unit tests are discovered case by case. NETNS tests
+#   (real LCM traffic) run whole inside a private network namespace via tests/netns-run, which exits 77
+#   (skipped, with a message) where no namespace can be made.
+function(gpilot_add_test)
+  cmake_parse_arguments(T "NETNS" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 120)
+  endif()
+  add_executable(${T_NAME} ${T_SOURCES})
+  set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
+  target_compile_definitions(${T_NAME} PRIVATE GPILOT_SHARED_DIR="${GPILOT_SHARED_DIR}")
+  if(T_NETNS)
+    add_test(NAME ${T_NAME} COMMAND ${CMAKE_SOURCE_DIR}/tests/netns-run $<TARGET_FILE:${T_NAME}>)
+    set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_RETURN_CODE 77)
+  else()
+    gtest_discover_tests(${T_NAME} DISCOVERY_MODE PRE_TEST
+      PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")
+  endif()
+endfunction()
+
+# gpilot_add_executable(name SOURCES ... LIBS ...): a service or tool in build/bin.
+function(gpilot_add_executable NAME)
+  cmake_parse_arguments(E "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${NAME} ${E_SOURCES})
+  target_link_libraries(${NAME} PRIVATE ${E_LIBS})
+endfunction()
+
+# Adds every child folder of the current source folder that has a CMakeLists.txt, in name order.
+function(gpilot_add_subdirectories)
+  file(GLOB _dirs LIST_DIRECTORIES true CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*")
+  list(SORT _dirs)
+  foreach(_dir IN LISTS _dirs)
+    if(IS_DIRECTORY "${_dir}" AND EXISTS "${_dir}/CMakeLists.txt")
+      add_subdirectory("${_dir}")
+    endif()
+  endforeach()
+endfunction()

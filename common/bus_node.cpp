@@ -1,0 +1,120 @@
+#include "bus_node.hpp"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <unistd.h>
+
+namespace gpilot {
+namespace {
+
+std::atomic<bool> g_signalled{false};
+
+extern "C" void on_signal(int) { g_signalled.store(true); }
+
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+int64_t read_rmem_max() {
+  std::ifstream in("/proc/sys/net/core/rmem_max");
+  int64_t v = -1;
+  in >> v;
+  return in ? v : -1;
+}
+
+}  // namespace
+
+std::string resolve_lcm_url(const std::string& flag) {
+  if (!flag.empty()) return flag;
+  if (const char* env = std::getenv("GPILOT_LCM_URL"); env && *env) return env;
+  return kDefaultLcmUrl;
+}
+
+int64_t recv_buf_size_of(const std::string& url) {
+  static const std::regex re("[?&]recv_buf_size=([0-9]+)");
+  std::smatch m;
+  if (std::regex_search(url, m, re)) return std::stoll(m[1].str());
+  return 0;
+}
+
+BusNode::BusNode(std::string name, const std::string& url) : name_(std::move(name)), url_(url) {
+  lcm_ = std::make_unique<lcm::LCM>(url_);
+  if (!lcm_->good())
+    throw BusError(name_ + ": cannot start LCM on '" + url_ +
+                   "' (a udpm:// URL needs a multicast route: ip route add 224.0.0.0/4 dev lo)");
+  const int64_t asked = recv_buf_size_of(url_);
+  const int64_t rmem_max = read_rmem_max();
+  if (asked > 0 && rmem_max >= 0 && rmem_max < asked)
+    std::fprintf(stderr,
+                 "%s: warning: LCM asked for a %lld-byte receive buffer but net.core.rmem_max is %lld; large "
+                 "images will be dropped. Raise it: sysctl -w net.core.rmem_max=%lld\n",
+                 name_.c_str(), static_cast<long long>(asked), static_cast<long long>(rmem_max),
+                 static_cast<long long>(asked));
+  install_signal_handlers();
+  stats_.set_state(health_t::STATE_STARTING, "");
+}
+
+BusNode::~BusNode() = default;
+
+void BusNode::publish_raw(const std::string& channel, const void* data, size_t size) {
+  lcm_->publish(channel, data, static_cast<unsigned int>(size));
+}
+
+void BusNode::every(double period_s, std::function<void()> fn) {
+  const int64_t period = std::max<int64_t>(1, seconds_to_utime(period_s));
+  timers_.push_back(Timer{period, monotonic_utime() + period, std::move(fn)});
+}
+
+void BusNode::set_state(int8_t health_state, const std::string& detail) { stats_.set_state(health_state, detail); }
+
+void BusNode::publish_health() {
+  const health_t h = stats_.report(wall_utime(), name_, static_cast<int32_t>(getpid()));
+  lcm_->publish("HEALTH", &h);
+}
+
+void BusNode::run_due_timers() {
+  const int64_t now = monotonic_utime();
+  for (auto& t : timers_) {
+    if (now < t.next_us) continue;
+    t.fn();
+    t.next_us += t.period_us;
+    if (t.next_us <= now) t.next_us = now + t.period_us;  // do not burst after a stall
+  }
+}
+
+bool BusNode::spin_once(int timeout_ms) {
+  if (stopping()) return false;
+  int wait_ms = timeout_ms;
+  const int64_t now = monotonic_utime();
+  for (const auto& t : timers_)
+    wait_ms = std::min<int>(wait_ms, static_cast<int>(std::max<int64_t>(0, (t.next_us - now + 999) / 1000)));
+  if (lcm_->handleTimeout(wait_ms) < 0) {
+    stats_.set_state(health_t::STATE_ERROR, "LCM receive failed");
+    return false;
+  }
+  run_due_timers();
+  return !stopping();
+}
+
+void BusNode::run() {
+  every(1.0, [this] { publish_health(); });
+  publish_health();
+  while (spin_once(100)) {
+  }
+  stats_.set_state(health_t::STATE_STOPPING, "stopping");
+  publish_health();
+}
+
+void BusNode::stop() { stop_requested_ = true; }
+
+bool BusNode::stopping() const { return stop_requested_ || g_signalled.load(); }
+
+}  // namespace gpilot

@@ -1,0 +1,25 @@
+// gpilot.image_t <-> cv::Mat. Decoding validates everything (sizes, stride, format, JPEG content): a bad
+// image yields a reason, never a crash or a Mat that reads past its buffer.
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "gpilot/image_t.hpp"
+
+namespace gpilot {
+
+// On success out is CV_8UC3 (BGR8, JPEG) or CV_8UC1 (GRAY8) and the result is "". Raw formats are
+// wrapped without a copy: out shares msg.data and must not outlive msg. JPEG is decoded into out.
+std::string image_to_mat(const image_t& msg, cv::Mat& out);
+
+// Encodes a CV_8UC3 (BGR) or CV_8UC1 frame. For PIXEL_FORMAT_JPEG a grey frame is stored as grey JPEG.
+// Throws std::invalid_argument for an empty frame or an unsupported type.
+image_t mat_to_image(const cv::Mat& frame, int64_t utime, int64_t seq, int8_t pixel_format = image_t::PIXEL_FORMAT_BGR8,
+                     int jpeg_quality = 90);
+
+// "BGR8" / "GRAY8" / "JPEG" -> PIXEL_FORMAT_*, or -1.
+int8_t pixel_format_from_name(const std::string& name);
+
+}  // namespace gpilot

@@ -1,0 +1,133 @@
+#include "message_checks.hpp"
+
+#include <cmath>
+#include <initializer_list>
+
+namespace gpilot {
+namespace {
+
+// The first non-finite value among named float fields, as a reason; "" if all are finite.
+struct Finite {
+  std::string reason;
+  Finite& operator()(const char* name, const float* v, int n) {
+    for (int i = 0; reason.empty() && i < n; ++i)
+      if (!std::isfinite(v[i])) reason = std::string(name) + " is not finite";
+    return *this;
+  }
+  Finite& operator()(const char* name, float v) { return (*this)(name, &v, 1); }
+};
+
+std::string check_enum(const char* name, int value, int lo, int hi) {
+  if (value < lo || value > hi) return std::string(name) + " " + std::to_string(value) + " is not a known value";
+  return "";
+}
+
+std::string check_box(const char* name, const float* box) {
+  if (box[2] < 0 || box[3] < 0) return std::string(name) + " has a negative size";
+  return "";
+}
+
+std::string first(std::initializer_list<std::string> reasons) {
+  for (const auto& r : reasons)
+    if (!r.empty()) return r;
+  return "";
+}
+
+}  // namespace
+
+std::string check_message(const image_t& m) {
+  if (m.size < 0 || static_cast<size_t>(m.size) != m.data.size()) return "image size field disagrees with its data";
+  if (m.width <= 0 || m.height <= 0)
+    return "image has no pixels (" + std::to_string(m.width) + "x" + std::to_string(m.height) + ")";
+  if (m.width > 16384 || m.height > 16384) return "image larger than 16384 pixels a side";
+  int bpp = 0;
+  switch (m.pixel_format) {
+    case image_t::PIXEL_FORMAT_GRAY8: bpp = 1; break;
+    case image_t::PIXEL_FORMAT_BGR8: bpp = 3; break;
+    case image_t::PIXEL_FORMAT_JPEG: return m.size > 0 ? "" : "empty JPEG";
+    default: return "unknown pixel format " + std::to_string(m.pixel_format);
+  }
+  const int64_t row = static_cast<int64_t>(m.width) * bpp;
+  if (m.row_stride < row)
+    return "row stride " + std::to_string(m.row_stride) + " is less than width x " + std::to_string(bpp) + " bytes";
+  const int64_t need = static_cast<int64_t>(m.row_stride) * (m.height - 1) + row;
+  if (m.size < need)
+    return "image data has " + std::to_string(m.size) + " bytes, " + std::to_string(m.width) + "x" +
+           std::to_string(m.height) + " needs " + std::to_string(need);
+  return "";
+}
+
+std::string check_message(const tracker_init_t& m) {
+  return first({check_enum("command", m.command, tracker_init_t::COMMAND_SET_BOX, tracker_init_t::COMMAND_RESET),
+                Finite()("box", m.box, 4).reason,
+                m.command == tracker_init_t::COMMAND_SET_BOX && (m.box[2] <= 0 || m.box[3] <= 0)
+                    ? "manual box has no area"
+                    : ""});
+}
+
+std::string check_message(const user_track_t& m) {
+  return first({check_enum("status", m.status, user_track_t::STATUS_SEARCHING, user_track_t::STATUS_LOST),
+                check_enum("init_source", m.init_source, user_track_t::INIT_NONE, user_track_t::INIT_MANUAL),
+                Finite()("box", m.box, 4)("confidence", m.confidence).reason, check_box("box", m.box),
+                m.image_width < 0 || m.image_height < 0 ? "negative image size" : ""});
+}
+
+std::string check_message(const hand_obs_t& m) {
+  return first({check_enum("kind", m.kind, hand_obs_t::KIND_NONE, hand_obs_t::KIND_FRONT),
+                check_enum("track_status", m.track_status, user_track_t::STATUS_SEARCHING, user_track_t::STATUS_LOST),
+                Finite()("user_box", m.user_box, 4)("shoulder_centre", m.shoulder_centre, 2)(
+                    "body_centre", m.body_centre, 2)("vector", m.vector, 2)("hand_box", m.hand_box, 4)
+                    .reason,
+                check_box("user_box", m.user_box), check_box("hand_box", m.hand_box),
+                m.hand_skin < 0 || m.skin_outside < 0 || m.skin_inside < 0 ? "negative skin count" : ""});
+}
+
+std::string check_message(const gesture_cmd_t& m) {
+  return first({check_enum("mode", m.mode, gesture_cmd_t::MODE_HOVER, gesture_cmd_t::MODE_FURTHER),
+                Finite()("direction", m.direction, 3)("user_box_width", m.user_box_width).reason,
+                m.user_box_width < 0 ? "negative user box width" : "",
+                m.n_out < 0 || m.n_front_higher < 0 || m.n_front_lower < 0 || m.buffer_fill < 0
+                    ? "negative buffer count"
+                    : ""});
+}
+
+std::string check_message(const flight_control_t& m) {
+  return first({check_enum("command", m.command, flight_control_t::COMMAND_ENGAGE, flight_control_t::COMMAND_DISARM),
+                Finite()("takeoff_altitude", m.takeoff_altitude).reason});
+}
+
+std::string check_message(const flight_setpoint_t& m) {
+  return first({check_enum("mode", m.mode, gesture_cmd_t::MODE_HOVER, gesture_cmd_t::MODE_FURTHER),
+                Finite()("velocity", m.velocity, 3)("yaw_rate", m.yaw_rate).reason});
+}
+
+std::string check_message(const vehicle_state_t& m) {
+  return first({check_enum("source", m.source, vehicle_state_t::SOURCE_SIMULATOR, vehicle_state_t::SOURCE_MAVLINK),
+                check_enum("landed_state", m.landed_state, vehicle_state_t::LANDED_UNKNOWN,
+                           vehicle_state_t::LANDED_LANDING),
+                Finite()("position", m.position, 3)("velocity", m.velocity, 3)("attitude", m.attitude, 3)(
+                    "yaw_rate", m.yaw_rate)
+                    .reason});
+}
+
+std::string check_message(const ground_truth_t& m) {
+  return first({check_enum("gesture", m.gesture, ground_truth_t::GESTURE_REST, ground_truth_t::GESTURE_FURTHER),
+                check_enum("expected_kind", m.expected_kind, hand_obs_t::KIND_NONE, hand_obs_t::KIND_FRONT),
+                check_enum("expected_mode", m.expected_mode, gesture_cmd_t::MODE_HOVER, gesture_cmd_t::MODE_FURTHER),
+                Finite()("user_box", m.user_box, 4)("face_box", m.face_box, 4)("shoulder_centre", m.shoulder_centre,
+                                                                                 2)("body_centre", m.body_centre, 2)(
+                    "left_hand", m.left_hand, 2)("right_hand", m.right_hand, 2)("hand_size", m.hand_size)(
+                    "expected_vector", m.expected_vector, 2)("expected_direction", m.expected_direction, 3)(
+                    "person_position", m.person_position, 3)("camera_position", m.camera_position, 3)(
+                    "camera_yaw", m.camera_yaw)
+                    .reason});
+}
+
+std::string check_message(const health_t& m) {
+  return first({check_enum("state", m.state, health_t::STATE_STARTING, health_t::STATE_STOPPING),
+                Finite()("rate_in_hz", m.rate_in_hz)("rate_out_hz", m.rate_out_hz)(
+                    "processing_ms_p50", m.processing_ms_p50)("processing_ms_p99", m.processing_ms_p99)
+                    .reason});
+}
+
+}  // namespace gpilot

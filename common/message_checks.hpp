@@ -1,0 +1,31 @@
+// Structural checks every received message passes before a stage sees it: finite numbers, known enum
+// values, consistent sizes. Each returns "" when the message is fine, else the reason it is rejected.
+#pragma once
+
+#include <string>
+
+#include "gpilot/flight_control_t.hpp"
+#include "gpilot/flight_setpoint_t.hpp"
+#include "gpilot/gesture_cmd_t.hpp"
+#include "gpilot/ground_truth_t.hpp"
+#include "gpilot/hand_obs_t.hpp"
+#include "gpilot/health_t.hpp"
+#include "gpilot/image_t.hpp"
+#include "gpilot/tracker_init_t.hpp"
+#include "gpilot/user_track_t.hpp"
+#include "gpilot/vehicle_state_t.hpp"
+
+namespace gpilot {
+
+std::string check_message(const image_t& m);
+std::string check_message(const tracker_init_t& m);
+std::string check_message(const user_track_t& m);
+std::string check_message(const hand_obs_t& m);
+std::string check_message(const gesture_cmd_t& m);
+std::string check_message(const flight_control_t& m);
+std::string check_message(const flight_setpoint_t& m);
+std::string check_message(const vehicle_state_t& m);
+std::string check_message(const ground_truth_t& m);
+std::string check_message(const health_t& m);
+
+}  // namespace gpilot

@@ -1,0 +1,42 @@
+// The command line every gpilot process shares: --config, --set, --lcm-url, --help with the stage's
+// description. Config is loaded and the whole file validated before the bus is touched; a bad config
+// exits with status 2, a bus that cannot start with 3, any other error with 1.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bus_node.hpp"
+#include "config.hpp"
+
+namespace gpilot {
+
+class ServiceCli {
+ public:
+  ServiceCli(std::string name, const std::string& description);
+
+  // Add the stage's own flags here before run().
+  CLI::App& app() { return app_; }
+
+  // Parses argv, loads the config, then calls body without a bus (tools) or with one (services).
+  int run(int argc, char** argv, const std::function<int(const Config&)>& body);
+  int run_node(int argc, char** argv, const std::function<int(const Config&, BusNode&)>& body);
+
+  const std::string& name() const { return name_; }
+  const std::string& lcm_url() const { return lcm_url_; }
+
+ private:
+  std::string name_;
+  CLI::App app_;
+  std::string config_file_;
+  std::vector<std::string> sets_;
+  std::string lcm_url_;
+};
+
+// Loads a config file ("" = defaults), applies section.key=value overrides and validates every section.
+Config load_config(const std::string& file, const std::vector<std::string>& sets);
+
+}  // namespace gpilot

@@ -1,0 +1,27 @@
+// Parameters of gpilot-capture (section `capture`): what is asked of a camera and how frames are published.
+#pragma once
+
+#include <string>
+
+namespace gpilot {
+
+struct CaptureParams {
+  int width = 640;                    //!< pixels asked of a camera (it may give another size; reported)
+  int height = 480;                   //!< pixels
+  double fps = 30.0;                  //!< frames per second asked of a camera; pacing of --images
+  std::string pixel_format = "BGR8";  //!< published format: BGR8, GRAY8 or JPEG
+  int jpeg_quality = 90;              //!< 1..100, with pixel_format JPEG
+  double camera_retry_s = 1.0;        //!< wait before reopening a camera that disappeared
+
+  template <class V>
+  void visit(V& v) {
+    v("width", width, 16, 7680, "camera width asked for, pixels");
+    v("height", height, 16, 4320, "camera height asked for, pixels");
+    v("fps", fps, 0.1, 240.0, "camera rate asked for and --images pacing, frames/s");
+    v("pixel_format", pixel_format, "published pixel format: BGR8, GRAY8 or JPEG");
+    v("jpeg_quality", jpeg_quality, 1, 100, "JPEG quality when pixel_format is JPEG");
+    v("camera_retry_s", camera_retry_s, 0.05, 60.0, "wait before reopening a lost camera, s");
+  }
+};
+
+}  // namespace gpilot

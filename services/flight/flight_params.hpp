@@ -1,0 +1,80 @@
+// Parameters of gpilot-flight (sections `flight`, `sim`, `mavlink`): command scaling, safety, the
+// built-in simulator and the MAVLink backend.
+#pragma once
+
+#include <string>
+
+namespace gpilot {
+
+struct FlightParams {
+  std::string backend = "sim";        //!< sim (built-in quadrotor), mavlink, or none (LCM only)
+  double command_spacing_s = 0.6;     //!< the paper's wait between gesture commands (600 ms)
+  double stale_timeout_s = 0.3;       //!< command, track or vehicle state older than this: hover
+  double setpoint_rate_hz = 50.0;     //!< FLIGHT_SETPOINT (and MAVLink setpoint) rate
+  double gain_horizontal = 1.0;       //!< m/s per user-box width of hand offset, sideways
+  double gain_vertical = 1.0;         //!< m/s per user-box width of hand offset, up/down
+  double speed_along_axis = 0.5;      //!< CLOSER/FURTHER speed, m/s
+  double max_horizontal_speed = 1.0;  //!< m/s
+  double max_vertical_speed = 0.5;    //!< m/s
+  double yaw_gain = 2.0;              //!< rad/s per image width of user-box offset from the image centre
+  double yaw_deadband = 0.05;         //!< offsets below this fraction of the image width are ignored
+  double max_yaw_rate = 0.8;          //!< rad/s
+
+  template <class V>
+  void visit(V& v) {
+    v("backend", backend, "where setpoints go: sim, mavlink or none");
+    v("command_spacing_s", command_spacing_s, 0.0, 10.0, "wait between gesture commands, s (paper 0.6)");
+    v("stale_timeout_s", stale_timeout_s, 0.01, 10.0, "inputs older than this give a hover setpoint, s");
+    v("setpoint_rate_hz", setpoint_rate_hz, 2.0, 500.0, "setpoint rate, Hz (PX4 leaves offboard below 2 Hz)");
+    v("gain_horizontal", gain_horizontal, 0.0, 20.0, "sideways speed per box width of hand offset, m/s");
+    v("gain_vertical", gain_vertical, 0.0, 20.0, "vertical speed per box width of hand offset, m/s");
+    v("speed_along_axis", speed_along_axis, 0.0, 10.0, "CLOSER/FURTHER speed, m/s");
+    v("max_horizontal_speed", max_horizontal_speed, 0.0, 20.0, "horizontal speed limit, m/s");
+    v("max_vertical_speed", max_vertical_speed, 0.0, 10.0, "vertical speed limit, m/s");
+    v("yaw_gain", yaw_gain, 0.0, 20.0, "yaw rate per image width of user offset, rad/s");
+    v("yaw_deadband", yaw_deadband, 0.0, 0.5, "user offsets below this fraction of image width: no yaw");
+    v("max_yaw_rate", max_yaw_rate, 0.0, 10.0, "yaw rate limit, rad/s");
+  }
+};
+
+struct SimParams {
+  double rate_hz = 100.0;             //!< integration rate (the paper's control loop ran at 103 Hz)
+  double velocity_time_constant_s = 0.3;  //!< first-order response of velocity to its setpoint
+  double yaw_time_constant_s = 0.15;  //!< first-order response of yaw rate to its setpoint
+  double start_north = 0.0;           //!< start position, NED metres
+  double start_east = 0.0;
+  double start_down = -1.5;           //!< 1.5 m above ground
+  double start_yaw = 0.0;             //!< rad
+
+  template <class V>
+  void visit(V& v) {
+    v("rate_hz", rate_hz, 1.0, 2000.0, "simulation step rate, Hz");
+    v("velocity_time_constant_s", velocity_time_constant_s, 0.001, 10.0, "velocity response time constant, s");
+    v("yaw_time_constant_s", yaw_time_constant_s, 0.001, 10.0, "yaw-rate response time constant, s");
+    v("start_north", start_north, -1e4, 1e4, "start position north, m");
+    v("start_east", start_east, -1e4, 1e4, "start position east, m");
+    v("start_down", start_down, -1e4, 1e4, "start position down, m (negative is up)");
+    v("start_yaw", start_yaw, -3.15, 3.15, "start yaw, rad");
+  }
+};
+
+struct MavlinkParams {
+  std::string endpoint = "udp:127.0.0.1:14540";  //!< the autopilot: setpoints go there, replies come back on the same socket
+  int system_id = 255;                //!< our MAVLink system id (a ground-station-like companion)
+  int component_id = 191;             //!< MAV_COMP_ID_ONBOARD_COMPUTER
+  int target_system = 1;              //!< the autopilot's system id
+  int target_component = 1;           //!< the autopilot's component id
+  double heartbeat_hz = 1.0;          //!< our HEARTBEAT rate
+
+  template <class V>
+  void visit(V& v) {
+    v("endpoint", endpoint, "autopilot endpoint, udp:HOST:PORT");
+    v("system_id", system_id, 1, 255, "our MAVLink system id");
+    v("component_id", component_id, 0, 255, "our MAVLink component id");
+    v("target_system", target_system, 0, 255, "autopilot system id");
+    v("target_component", target_component, 0, 255, "autopilot component id");
+    v("heartbeat_hz", heartbeat_hz, 0.2, 10.0, "HEARTBEAT rate, Hz");
+  }
+};
+
+}  // namespace gpilot

@@ -1,0 +1,73 @@
+// Parameters of gpilot-tracker (section `tracker`): Haar face search, body box, DSST (Danelljan et al.,
+// BMVC 2014, the published settings as defaults) and loss detection.
+#pragma once
+
+#include <string>
+
+namespace gpilot {
+
+struct FaceDetectorParams {
+  std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_alt2.xml";  //!< from opencv-data
+  double scale_factor = 1.1;  //!< detectMultiScale pyramid step
+  int min_neighbors = 5;      //!< detectMultiScale: 5 gives no false positive on messi5.jpg, 3 does
+  int min_face_px = 20;       //!< smallest face searched for, pixels (in the searched image)
+  double downscale = 1.0;     //!< search a copy shrunk by this factor (1 = full size)
+
+  template <class V>
+  void visit(V& v) {
+    v("cascade", cascade, "Haar cascade file (opencv-data)");
+    v("scale_factor", scale_factor, 1.01, 2.0, "detectMultiScale scale step");
+    v("min_neighbors", min_neighbors, 0, 50, "detectMultiScale minNeighbors");
+    v("min_face_px", min_face_px, 8, 1000, "smallest face searched, pixels");
+    v("downscale", downscale, 1.0, 8.0, "search on a copy shrunk by this factor");
+  }
+};
+
+struct DsstParams {
+  double lambda = 0.01;               //!< regularisation λ of H = conj(G)F / (ΣF conj(F) + λ)
+  double learning_rate = 0.025;       //!< η, update rate of numerator A and denominator B
+  double padding = 1.0;               //!< search area = (1 + padding) × target size
+  double output_sigma_factor = 1.0 / 16.0;  //!< translation Gaussian σ = factor × target size
+  int cell_size = 4;                  //!< FHOG cell, pixels
+  int number_of_scales = 33;          //!< S, scale filter length
+  double scale_step = 1.02;           //!< a, ratio between neighbouring scales
+  double scale_sigma_factor = 0.25;   //!< scale Gaussian σ = factor × number_of_scales
+
+  template <class V>
+  void visit(V& v) {
+    v("lambda", lambda, 1e-6, 10.0, "filter regularisation lambda (paper 0.01)");
+    v("learning_rate", learning_rate, 0.0, 1.0, "model learning rate eta (paper 0.025)");
+    v("padding", padding, 0.0, 4.0, "search area = (1 + padding) x target (paper 1)");
+    v("output_sigma_factor", output_sigma_factor, 1e-3, 1.0, "translation Gaussian sigma / target size (paper 1/16)");
+    v("cell_size", cell_size, 1, 16, "FHOG cell size, pixels (paper 4)");
+    v("number_of_scales", number_of_scales, 1, 129, "scales in the scale filter (paper 33)");
+    v("scale_step", scale_step, 1.001, 1.5, "ratio between neighbouring scales (paper 1.02)");
+    v("scale_sigma_factor", scale_sigma_factor, 1e-3, 4.0, "scale Gaussian sigma / number of scales (paper 1/4)");
+  }
+};
+
+struct TrackerParams {
+  FaceDetectorParams face;
+  DsstParams dsst;
+  // The paper's "preset head-body ratio" is not given. Ours: an adult is about 7.5 heads tall and a face
+  // box from the cascade is about 0.8 of the head height; a box 2.75 face widths wide holds shoulders and
+  // arms resting at the sides, 7 face heights tall reaches below the knees.
+  double body_width_in_faces = 2.75;   //!< body box width / face box width
+  double body_height_in_faces = 7.0;   //!< body box height / face box height
+  double body_top_in_faces = 0.25;     //!< body box top sits this many face heights above the face box top
+  double lost_psr = 5.0;               //!< PSR below this counts as a bad frame
+  int lost_frames = 10;                //!< consecutive bad frames before LOST
+
+  template <class V>
+  void visit(V& v) {
+    v.group("face", face);
+    v.group("dsst", dsst);
+    v("body_width_in_faces", body_width_in_faces, 0.5, 20.0, "head-body ratio: body box width / face width");
+    v("body_height_in_faces", body_height_in_faces, 0.5, 20.0, "head-body ratio: body box height / face height");
+    v("body_top_in_faces", body_top_in_faces, 0.0, 5.0, "body box top above the face top, in face heights");
+    v("lost_psr", lost_psr, 0.0, 100.0, "peak-to-sidelobe ratio below which a frame is bad");
+    v("lost_frames", lost_frames, 1, 1000, "consecutive bad frames before the track is LOST");
+  }
+};
+
+}  // namespace gpilot

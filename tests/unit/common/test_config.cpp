@@ -1,0 +1,157 @@
+// Config: the paper's numbers are the defaults; bad keys and values are errors naming the key; the
+// shipped deploy/config/default.yaml is exactly what the code declares.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "capture/capture_params.hpp"
+#include "config_schema.hpp"
+#include "decide/decide_params.hpp"
+#include "flight/flight_params.hpp"
+#include "hands/hands_params.hpp"
+#include "service_cli.hpp"
+#include "tracker/tracker_params.hpp"
+
+namespace gpilot {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+// The numbers of PAPER-NOTES.md, by key.
+TEST(Config, DefaultsAreThePapersNumbers) {
+  const Config c;
+  const auto hands = c.section<HandsParams>("hands");
+  EXPECT_DOUBLE_EQ(hands.lambda1, 0.5);
+  EXPECT_DOUBLE_EQ(hands.lambda2, 0.2);
+  EXPECT_DOUBLE_EQ(hands.lambda3, 0.013);
+  EXPECT_EQ(hands.out_min_skin, 30);
+  EXPECT_EQ(hands.front_min_skin, 30);
+  EXPECT_DOUBLE_EQ(hands.hand_square_ratio, 1.0 / 4.0);  // w/4
+  EXPECT_DOUBLE_EQ(hands.front_gate_ratio, 1.0 / 5.0);   // w/5
+  EXPECT_DOUBLE_EQ(hands.body_centre_ratio, 0.5);        // p_bc = box centre
+
+  const auto decide = c.section<DecideParams>("decide");
+  EXPECT_EQ(decide.buffer_size, 60);
+  EXPECT_EQ(decide.out_threshold, 30);
+  EXPECT_EQ(decide.front_threshold, 30);
+  EXPECT_DOUBLE_EQ(decide.lambda4, 0.5);
+
+  const auto tracker = c.section<TrackerParams>("tracker");
+  EXPECT_DOUBLE_EQ(tracker.dsst.lambda, 0.01);
+  EXPECT_DOUBLE_EQ(tracker.dsst.learning_rate, 0.025);
+  EXPECT_DOUBLE_EQ(tracker.dsst.padding, 1.0);
+  EXPECT_DOUBLE_EQ(tracker.dsst.output_sigma_factor, 1.0 / 16.0);
+  EXPECT_EQ(tracker.dsst.cell_size, 4);
+  EXPECT_EQ(tracker.dsst.number_of_scales, 33);
+  EXPECT_DOUBLE_EQ(tracker.dsst.scale_step, 1.02);
+  EXPECT_DOUBLE_EQ(tracker.dsst.scale_sigma_factor, 1.0 / 4.0);
+
+  const auto flight = c.section<FlightParams>("flight");
+  EXPECT_DOUBLE_EQ(flight.command_spacing_s, 0.6);
+  EXPECT_DOUBLE_EQ(flight.stale_timeout_s, 0.3);
+}
+
+TEST(Config, EmptyFileGivesDefaults) {
+  const Config c = Config::from_string("");
+  const auto d = c.section<DecideParams>("decide");
+  EXPECT_EQ(d.buffer_size, 60);
+  EXPECT_NO_THROW(validate_config(c));
+}
+
+TEST(Config, FileValuesOverrideDefaults) {
+  const Config c = Config::from_string("hands:\n  lambda1: 0.75\n  skin:\n    threshold: 0.6\ndecide:\n  buffer_size: 40\n");
+  EXPECT_DOUBLE_EQ(c.section<HandsParams>("hands").lambda1, 0.75);
+  EXPECT_DOUBLE_EQ(c.section<HandsParams>("hands").skin.threshold, 0.6);
+  EXPECT_DOUBLE_EQ(c.section<HandsParams>("hands").lambda2, 0.2);
+  EXPECT_EQ(c.section<DecideParams>("decide").buffer_size, 40);
+}
+
+TEST(Config, UnknownKeyIsAnErrorNamingIt) {
+  const Config c = Config::from_string("hands:\n  lamda1: 0.5\n");
+  EXPECT_EQ(error_of([&] { c.section<HandsParams>("hands"); }),
+            "hands.lamda1: unknown key (see deploy/config/default.yaml for the keys of 'hands')");
+  const Config nested = Config::from_string("tracker:\n  dsst:\n    eta: 0.1\n");
+  EXPECT_EQ(error_of([&] { validate_config(nested); }),
+            "tracker.dsst.eta: unknown key (see deploy/config/default.yaml for the keys of 'tracker.dsst')");
+  const Config section = Config::from_string("hand:\n  lambda1: 0.5\n");
+  EXPECT_EQ(error_of([&] { validate_config(section); }),
+            "<string>: unknown section 'hand' (see deploy/config/default.yaml)");
+}
+
+TEST(Config, OutOfRangeAndWrongTypeAreErrors) {
+  EXPECT_EQ(error_of([] { Config::from_string("decide:\n  buffer_size: 0\n").section<DecideParams>("decide"); }),
+            "decide.buffer_size: 0 is out of range [1, 10000]");
+  EXPECT_EQ(error_of([] { Config::from_string("decide:\n  buffer_size: 2.5\n").section<DecideParams>("decide"); }),
+            "decide.buffer_size: must be a whole number, got 2.5");
+  EXPECT_EQ(error_of([] { Config::from_string("hands:\n  lambda1: abc\n").section<HandsParams>("hands"); }),
+            "hands.lambda1: 'abc' is not a number");
+  EXPECT_EQ(error_of([] { Config::from_string("hands:\n  lambda1: .nan\n").section<HandsParams>("hands"); }),
+            "hands.lambda1: must be finite, got .nan");
+  EXPECT_EQ(error_of([] { Config::from_string("hands: 3\n").section<HandsParams>("hands"); }),
+            "hands: expected a map of keys, got a value");
+  EXPECT_EQ(error_of([] { Config::from_string("hands: [\n"); }).rfind("<string>: not valid YAML", 0), 0u);
+}
+
+TEST(Config, SetOverrides) {
+  Config c = Config::from_string("decide:\n  lambda4: 0.25\n");
+  c.set("decide.lambda4=0.75");
+  c.set("tracker.dsst.learning_rate=0.05");
+  c.set("flight.backend=none");
+  EXPECT_DOUBLE_EQ(c.section<DecideParams>("decide").lambda4, 0.75);
+  EXPECT_DOUBLE_EQ(c.section<TrackerParams>("tracker").dsst.learning_rate, 0.05);
+  EXPECT_EQ(c.section<FlightParams>("flight").backend, "none");
+  EXPECT_EQ(error_of([&] { c.set("lambda4=1"); }), "--set 'lambda4=1': expected section.key=value");
+  EXPECT_EQ(error_of([&] { c.set("decide.lambda4"); }), "--set 'decide.lambda4': expected section.key=value");
+  c.set("decide.lambda5=1");
+  EXPECT_EQ(error_of([&] { validate_config(c); }),
+            "decide.lambda5: unknown key (see deploy/config/default.yaml for the keys of 'decide')");
+}
+
+TEST(Config, MissingFileIsAnError) {
+  EXPECT_EQ(error_of([] { Config::from_file("/nonexistent/gpilot.yaml"); }),
+            "/nonexistent/gpilot.yaml: cannot open config file");
+}
+
+TEST(Config, ShippedDefaultFileMatchesTheCode) {
+  std::ifstream in(std::string(GPILOT_SOURCE_DIR) + "/deploy/config/default.yaml");
+  ASSERT_TRUE(in) << "deploy/config/default.yaml missing";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_EQ(ss.str(), default_config_yaml())
+      << "regenerate it: build/bin/gpilot-config --defaults > deploy/config/default.yaml";
+}
+
+TEST(Config, WrittenDefaultsReadBackExactly) {
+  // The generated file, read back, gives every default unchanged (the writer loses no precision).
+  const Config c = Config::from_string(default_config_yaml());
+  EXPECT_NO_THROW(validate_config(c));
+  EXPECT_DOUBLE_EQ(c.section<TrackerParams>("tracker").dsst.output_sigma_factor, 1.0 / 16.0);
+  EXPECT_DOUBLE_EQ(c.section<HandsParams>("hands").lambda3, 0.013);
+  EXPECT_EQ(c.section<CaptureParams>("capture").pixel_format, "BGR8");
+}
+
+int run(const std::string& args) {
+  const std::string cmd = std::string(GPILOT_BIN_DIR) + "/gpilot-config " + args + " >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(Config, ProcessExitsNonZeroOnBadConfig) {
+  EXPECT_EQ(run("--config " GPILOT_SOURCE_DIR "/deploy/config/default.yaml"), 0);
+  EXPECT_EQ(run("--set hands.lambda1=-1"), 2);
+  EXPECT_EQ(run("--set hands.nokey=1"), 2);
+  EXPECT_EQ(run("--config /nonexistent.yaml"), 2);
+}
+
+}  // namespace
+}  // namespace gpilot

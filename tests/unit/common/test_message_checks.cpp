@@ -1,0 +1,71 @@
+// check_message: the reasons a structurally bad message is rejected before any stage sees it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "message_checks.hpp"
+
+namespace gpilot {
+namespace {
+
+image_t bgr(int w, int h) {
+  image_t m{};
+  m.width = w;
+  m.height = h;
+  m.row_stride = w * 3;
+  m.pixel_format = image_t::PIXEL_FORMAT_BGR8;
+  m.data.assign(static_cast<size_t>(w) * h * 3, 0);
+  m.size = static_cast<int32_t>(m.data.size());
+  return m;
+}
+
+TEST(MessageChecks, ImageSizesMustAgree) {
+  EXPECT_EQ(check_message(bgr(4, 3)), "");
+  image_t short_data = bgr(4, 3);
+  short_data.data.resize(35);
+  short_data.size = 35;
+  EXPECT_EQ(check_message(short_data), "image data has 35 bytes, 4x3 needs 36");
+  image_t lying_size = bgr(4, 3);
+  lying_size.size = 40;
+  EXPECT_EQ(check_message(lying_size), "image size field disagrees with its data");
+  image_t bad_stride = bgr(4, 3);
+  bad_stride.row_stride = 11;
+  EXPECT_EQ(check_message(bad_stride), "row stride 11 is less than width x 3 bytes");
+  image_t empty = bgr(4, 3);
+  empty.width = 0;
+  EXPECT_EQ(check_message(empty), "image has no pixels (0x3)");
+  image_t fmt = bgr(4, 3);
+  fmt.pixel_format = 9;
+  EXPECT_EQ(check_message(fmt), "unknown pixel format 9");
+}
+
+TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  gesture_cmd_t g{};
+  EXPECT_EQ(check_message(g), "");
+  g.direction[1] = nan;
+  EXPECT_EQ(check_message(g), "direction is not finite");
+  g.direction[1] = 0;
+  g.mode = 6;
+  EXPECT_EQ(check_message(g), "mode 6 is not a known value");
+
+  vehicle_state_t v{};
+  v.source = vehicle_state_t::SOURCE_SIMULATOR;
+  EXPECT_EQ(check_message(v), "");
+  v.position[2] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(check_message(v), "position is not finite");
+
+  hand_obs_t h{};
+  h.user_box[2] = -1;
+  EXPECT_EQ(check_message(h), "user_box has a negative size");
+
+  tracker_init_t t{};
+  t.command = tracker_init_t::COMMAND_SET_BOX;
+  EXPECT_EQ(check_message(t), "manual box has no area");
+  t.command = tracker_init_t::COMMAND_RESET;
+  EXPECT_EQ(check_message(t), "");
+}
+
+}  // namespace
+}  // namespace gpilot
