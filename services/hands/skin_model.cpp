@@ -11,6 +11,12 @@ namespace {
 
 constexpr const char* kFormat = "gpilot-skin-histogram-1";
 
+// The description is stored as a YAML literal block, which always reads back with one final newline.
+std::string trim_end(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
 int log2_exact(int bins) {
   for (int k = 1; k <= 8; ++k)
     if ((1 << k) == bins) return k;
@@ -71,7 +77,7 @@ SkinModel SkinModel::train(const SkinHistogram& hist, const SkinTrainOptions& op
   const std::vector<double> n = smooth(hist.non_skin_counts(), bins, options.smoothing_sigma);
   SkinModel m;
   m.bins_ = bins;
-  m.description_ = options.description;
+  m.description_ = trim_end(options.description);
   m.table_.resize(s.size());
   for (size_t i = 0; i < s.size(); ++i) {
     const double total = s[i] + n[i];
@@ -120,7 +126,7 @@ SkinModel SkinModel::load(const std::string& path) {
     SkinModel m;
     m.bins_ = root["bins"].as<int>();
     if (log2_exact(m.bins_) < 1) throw SkinModelError(path + ": bins must be a power of two from 2 to 256");
-    if (root["description"]) m.description_ = root["description"].as<std::string>();
+    if (root["description"]) m.description_ = trim_end(root["description"].as<std::string>());
     const std::string text = root["table_hex"].as<std::string>();
     const size_t n = static_cast<size_t>(m.bins_) * m.bins_ * m.bins_;
     m.table_.reserve(n);
