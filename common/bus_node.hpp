@@ -120,7 +120,7 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   BusNode& node = *sub->node;
   Msg msg;
   if (msg.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) {
-    node.stats_.rejected(channel + ": " + std::to_string(rbuf->data_size) + " bytes do not decode as " +
+    node.stats_.rejected(channel + ": " + std::to_string(rbuf->data_size) + " bytes do not decode as gpilot." +
                          Msg::getTypeName() + " (truncated, malformed or another type)");
     return;
   }
