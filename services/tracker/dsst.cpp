@@ -125,10 +125,13 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
   if (S % 2 == 0) scale_window_.erase(scale_window_.begin());
   if (S == 1) scale_window_.assign(1, 1.0f);
   const double scale_sigma = S / std::sqrt(33.0) * p_.scale_sigma_factor;
-  cv::Mat ys(1, S, CV_32F);
-  for (int i = 0; i < S; ++i)
-    ys.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * (i - mid) * (i - mid) / (scale_sigma * scale_sigma)));
-  cv::dft(ys, scale_label_f_, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+  scale_labels_f_.resize(static_cast<size_t>(S));
+  for (int c = 0; c < S; ++c) {
+    cv::Mat ys(1, S, CV_32F);
+    for (int i = 0; i < S; ++i)
+      ys.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * (i - c) * (i - c) / (scale_sigma * scale_sigma)));
+    cv::dft(ys, scale_labels_f_[static_cast<size_t>(c)], cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+  }
   const double sf = area > p_.scale_model_max_area ? std::sqrt(p_.scale_model_max_area / area) : 1.0;
   scale_model_sz_ = cv::Size(std::max(2 * cell, static_cast<int>(box.width * sf)),
                              std::max(2 * cell, static_cast<int>(box.height * sf)));
@@ -143,7 +146,8 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
   const Sample s = translation_features(frame, pos_, scale_);
   learn_translation(s, true);
   scale_features(frame, pos_, scale_);
-  learn_scale(true);
+  learn_scale(true, mid);
+  have_detection_ = false;
   initialized_ = true;
 }
 
@@ -244,7 +248,8 @@ void Dsst::scale_features(const cv::Mat& frame, cv::Point2d pos, double scale) {
   cv::dft(scale_x_, scale_x_f_, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
 }
 
-void Dsst::learn_scale(bool first) {
+void Dsst::learn_scale(bool first, int label_centre) {
+  const cv::Mat& label_f = scale_labels_f_[static_cast<size_t>(label_centre)];
   const int S = p_.number_of_scales;
   const int d = scale_x_f_.rows;
   const float rate = first ? 1.0f : static_cast<float>(p_.learning_rate);
@@ -257,7 +262,7 @@ void Dsst::learn_scale(bool first) {
   for (int r = 0; r < d; ++r) {
     cv::Mat num_row = scale_num_.row(r);
     const cv::Mat x_row = scale_x_f_.row(r);
-    blend_numerator(num_row, scale_label_f_, x_row, rate);
+    blend_numerator(num_row, label_f, x_row, rate);
     const float* xp = x_row.ptr<float>();
     for (int s = 0; s < S; ++s) den[s] += rate * (xp[2 * s] * xp[2 * s] + xp[2 * s + 1] * xp[2 * s + 1]);
   }
@@ -273,10 +278,17 @@ void Dsst::check_frame(const cv::Mat& frame, const char* who) const {
 void Dsst::learn(const cv::Mat& frame) {
   if (!initialized_) throw std::logic_error("Dsst::learn before init");
   check_frame(frame, "Dsst::learn");
-  const Sample t = translation_features(frame, pos_, scale_);
-  learn_translation(t, false);
-  scale_features(frame, pos_, scale_);
-  learn_scale(false);
+  if (p_.reuse_detection_samples && have_detection_) {
+    // The target sits at the estimate inside the detection samples: labels centred there.
+    learn_translation(detection_sample_, false);
+    learn_scale(false, detection_scale_index_);
+  } else {
+    const Sample t = translation_features(frame, pos_, scale_);
+    learn_translation(t, false);
+    scale_features(frame, pos_, scale_);
+    learn_scale(false, (p_.number_of_scales - 1) / 2);
+  }
+  have_detection_ = false;
 }
 
 DsstEstimate Dsst::track(const cv::Mat& frame) {
@@ -362,7 +374,13 @@ DsstEstimate Dsst::track(const cv::Mat& frame) {
   cv::dft(scale_resp_f_, scale_resp_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
   cv::Point best;
   cv::minMaxLoc(scale_resp_, nullptr, nullptr, nullptr, &best);
-  scale_ = std::clamp(scale_ * scale_factors_[static_cast<size_t>(best.x)], min_scale_, max_scale_);
+  const double new_scale = std::clamp(scale_ * scale_factors_[static_cast<size_t>(best.x)], min_scale_, max_scale_);
+  // The index whose factor is nearest the clamped change is where the target's size sits in the sample.
+  detection_scale_index_ = std::clamp(
+      static_cast<int>(std::lround(std::log(new_scale / scale_) / std::log(p_.scale_step))) + (S - 1) / 2, 0, S - 1);
+  scale_ = new_scale;
+  detection_sample_ = s;
+  have_detection_ = true;
   return estimate();
 }
 

@@ -55,7 +55,7 @@ class Dsst {
   Sample translation_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void scale_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void learn_translation(const Sample& s, bool first);
-  void learn_scale(bool first);
+  void learn_scale(bool first, int label_centre);
   void gaussian_label(cv::Point2d centre_cells);
   void check_frame(const cv::Mat& frame, const char* who) const;
 
@@ -85,7 +85,12 @@ class Dsst {
   std::vector<double> scale_factors_;
   std::vector<float> scale_window_;
   cv::Size scale_model_sz_;
-  cv::Mat scale_label_f_;      // 1 x S, CV_32FC2
+  std::vector<cv::Mat> scale_labels_f_;  // per peak index: 1 x S, CV_32FC2
+  // The samples of the last track() (translation DFTs in feats_f_, scale DFTs in scale_x_f_), kept for
+  // learn() when params reuse_detection_samples.
+  bool have_detection_ = false;
+  Sample detection_sample_;
+  int detection_scale_index_ = 0;
   cv::Mat scale_num_;          // d x S, CV_32FC2
   cv::Mat scale_den_;          // 1 x S, CV_32F
 
