@@ -1,5 +1,6 @@
 // Joint positions of the synthetic person: the arm's direction from its pose, the elbow by two-link inverse
-// kinematics (it bends down, out and back, the way an arm folds).
+// kinematics (it bends down and back, the way an arm folds, and only a little outward so that a hand in
+// front of the body keeps its elbow inside the tracker's body box).
 #include "person_figure.hpp"
 
 #include <algorithm>
@@ -28,7 +29,7 @@ ArmJoints solve_arm(const FigureDims& d, const ArmPose& pose, double side, doubl
   const cv::Point3d u = unit(to_hand);
   const double a = (l1 * l1 - l2 * l2 + dist * dist) / (2.0 * dist);
   const double h = std::sqrt(std::max(0.0, l1 * l1 - a * a));
-  cv::Point3d pole(side * 0.5, -1.0, -0.6);
+  cv::Point3d pole(side * 0.1, -1.0, -0.5);
   cv::Point3d n = unit(pole - u * pole.dot(u));
   if (n.dot(n) < 0.5) n = unit(cv::Point3d(0, 0, -1) - u * (-u.z));
   j.elbow = j.shoulder + u * a + n * h;
