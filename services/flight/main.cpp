@@ -139,6 +139,7 @@ class FlightService {
     if (session_) {
       node_.every(1.0 / mav_params_.heartbeat_hz, [this] { link_->send(session_->heartbeat()); });
       node_.every(0.002, [this] { poll_mavlink(); });
+      node_.every(1.0, [this] { report_link(); });
       link_->send(session_->heartbeat());
     }
     node_.set_state(health_t::STATE_OK, "backend " + fp_.backend + ", not engaged");
@@ -220,6 +221,16 @@ class FlightService {
         node_.publish("VEHICLE_STATE", to_message(*state, vehicle_state_t::SOURCE_MAVLINK));
       }
     }
+  }
+
+  void report_link() {
+    const int64_t now = wall_utime();
+    if (!session_->heard_autopilot())
+      node_.set_state(health_t::STATE_DEGRADED, "no autopilot HEARTBEAT from " + mav_params_.endpoint);
+    else if (!in_.vehicle || now - in_.vehicle_received > kMicrosPerSecond)
+      node_.set_state(health_t::STATE_DEGRADED, "no LOCAL_POSITION_NED from " + mav_params_.endpoint + " for 1 s");
+    else
+      node_.set_state(health_t::STATE_OK, "autopilot at " + mav_params_.endpoint + (in_.engaged ? ", ENGAGED" : ""));
   }
 
   BusNode& node_;
