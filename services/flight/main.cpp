@@ -112,6 +112,8 @@ class FlightService {
       } catch (const std::invalid_argument& e) {
         throw ConfigError(std::string("mavlink.endpoint: ") + e.what());
       }
+      if (mav_params_.autopilot != "px4" && mav_params_.autopilot != "ardupilot")
+        throw ConfigError("mavlink.autopilot: '" + mav_params_.autopilot + "' is not one of px4, ardupilot");
       session_.emplace(mav_params_);
     } else if (fp_.backend != "none") {
       throw ConfigError("flight.backend: '" + fp_.backend + "' is not one of sim, mavlink, none");
@@ -195,7 +197,7 @@ class FlightService {
     if (session_ && in_.engaged) {
       link_->send(session_->setpoint(last_, in_.now));
       // PX4 accepts OFFBOARD only once setpoints are streaming: ask after a short run of them.
-      if (++setpoints_since_engage_ == 10 && mav_params_.px4_offboard_on_engage) link_->send(session_->px4_offboard());
+      if (++setpoints_since_engage_ == 10 && mav_params_.set_mode_on_engage) link_->send(session_->engage_mode());
     }
   }
 

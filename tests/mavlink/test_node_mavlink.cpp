@@ -131,9 +131,12 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   input += to_hex(s.arm(true)) + "\n";
   input += to_hex(s.takeoff(2.5f)) + "\n";
   input += to_hex(s.land()) + "\n";
-  input += to_hex(s.px4_offboard()) + "\n";
+  input += to_hex(s.engage_mode()) + "\n";
+  MavlinkParams ardupilot;
+  ardupilot.autopilot = "ardupilot";
+  input += to_hex(MavlinkSession(ardupilot).takeoff(2.5f)) + "\n";
   const auto out = run_peer("decode", input);
-  ASSERT_EQ(out.size(), 7u);  // 6 packets + summary
+  ASSERT_EQ(out.size(), 8u);  // 7 packets + summary
 
   const std::string& hb = out[0];
   EXPECT_EQ(field(hb, "msg"), "\"HEARTBEAT\"");
@@ -170,7 +173,7 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   EXPECT_EQ(num(arm, "targetComponent"), 1);
   EXPECT_EQ(num(arm, "confirmation"), 0);
   EXPECT_EQ(num(out[3], "command"), 22);
-  EXPECT_EQ(num(out[3], "param7"), 2.5);
+  EXPECT_EQ(field(out[3], "param7"), "null");  // PX4: its own take-off altitude (param7 would be AMSL)
   EXPECT_EQ(field(out[3], "param4"), "null");  // NaN: the autopilot's default yaw (JSON has no NaN)
   EXPECT_EQ(num(out[4], "command"), 21);
   EXPECT_EQ(num(out[5], "command"), 176);
@@ -178,7 +181,9 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   EXPECT_EQ(num(out[5], "param2"), 6);
 
   EXPECT_NE(out.back().find("\"summary\""), std::string::npos);
-  EXPECT_EQ(num(out.back(), "valid"), 6);
+  EXPECT_EQ(num(out[6], "command"), 22);
+  EXPECT_EQ(num(out[6], "param7"), 2.5);  // ArduPilot: metres above home
+  EXPECT_EQ(num(out.back(), "valid"), 7);
   EXPECT_EQ(num(out.back(), "invalid"), 0);
 }
 

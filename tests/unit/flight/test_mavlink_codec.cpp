@@ -298,12 +298,17 @@ TEST(MavlinkSession, CommandsCarryTheirMavCmd) {
   EXPECT_EQ(one(s.arm(false)).param[0], 0.0f);
   const CommandLong t = one(s.takeoff(3.0f));
   EXPECT_EQ(t.command, 22);
-  EXPECT_EQ(t.param[6], 3.0f);
+  EXPECT_TRUE(std::isnan(t.param[6]));  // PX4 reads param7 as AMSL: its own take-off altitude instead
   EXPECT_EQ(one(s.land()).command, 21);
-  const CommandLong m = one(s.px4_offboard());
+  const CommandLong m = one(s.engage_mode());
   EXPECT_EQ(m.command, 176);
   EXPECT_EQ(m.param[0], 1.0f);
-  EXPECT_EQ(m.param[1], 6.0f);
+  EXPECT_EQ(m.param[1], 6.0f);  // PX4 main mode OFFBOARD
+  MavlinkParams ap;
+  ap.autopilot = "ardupilot";
+  MavlinkSession a(ap);
+  EXPECT_EQ(one(a.takeoff(3.0f)).param[6], 3.0f);  // ArduPilot: metres above home
+  EXPECT_EQ(one(a.engage_mode()).param[1], 4.0f);  // Copter GUIDED
 }
 
 TEST(MavlinkEndpoint, ParsesUdpHostPortAndRejectsTheRest) {
