@@ -87,6 +87,32 @@ TEST_F(CaptureService, VideoFileReadsBackEveryFrame) {
   EXPECT_NE(r.health.back().state_detail.find("end of video file"), std::string::npos) << r.health.back().state_detail;
 }
 
+TEST_F(CaptureService, LoopedVideoKeepsCountingUntilTheDuration) {
+  const std::string path = (dir_ / "short.avi").string();
+  {
+    cv::VideoWriter w(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0, cv::Size(64, 48));
+    ASSERT_TRUE(w.isOpened());
+    for (int i = 0; i < 10; ++i) w.write(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(i * 20)));
+  }
+  BusNode node("test", "memq://");
+  Received r;
+  listen(node, r);
+  CaptureOptions o;
+  o.kind = CaptureOptions::Kind::Video;
+  o.source = path;
+  o.loop = true;
+  o.as_fast_as_possible = true;
+  o.duration_s = 2.5;  // 25 frames at 10 fps: two and a half passes
+  EXPECT_EQ(run_capture(Config{}, o, node), 0);
+  drain(node);
+  ASSERT_EQ(r.frames.size(), 25u);
+  EXPECT_EQ(r.frames.back().seq, 24);
+  EXPECT_EQ(r.frames.back().utime, 2400000);  // file time keeps counting across the loop
+  cv::Mat f;
+  ASSERT_EQ(image_to_mat(r.frames[12], f), "");  // frame 2 of the second pass
+  EXPECT_NEAR(cv::mean(f)[0], 40.0, 4.0);
+}
+
 TEST_F(CaptureService, MissingVideoIsAClearErrorInHealth) {
   BusNode node("test", "memq://");
   Received r;
