@@ -190,7 +190,8 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
   if (root["description"]) s.description_ = r.text(root["description"], "description");
   if (root["background"]) s.background_ = r.text(root["background"], "background");
   if (const YAML::Node g = root["background_grade"]) {
-    r.only(g, "background_grade", {"saturation", "red_gain", "blue_gain"});
+    r.only(g, "background_grade", {"saturation", "red_gain", "blue_gain", "blur_sigma"});
+    r.opt(g, "blur_sigma", "background_grade", s.grade_.blur_sigma, 0.0, 20.0);
     r.opt(g, "saturation", "background_grade", s.grade_.saturation, 0.0, 2.0);
     r.opt(g, "red_gain", "background_grade", s.grade_.red_gain, 0.0, 4.0);
     r.opt(g, "blue_gain", "background_grade", s.grade_.blue_gain, 0.0, 4.0);

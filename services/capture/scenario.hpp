@@ -7,7 +7,7 @@
 //   description: every gesture of the paper in turn
 //   duration_s: 60                     # default: last keyframe + its transition + 2 s
 //   background: data/backgrounds/building.jpg
-//   background_grade: {saturation: 0.4, red_gain: 0.85, blue_gain: 1.15}   # the defaults: see below
+//   background_grade: {saturation: 0.4, red_gain: 0.85, blue_gain: 1.15, blur_sigma: 1.5}   # the defaults
 //   transition_s: 1.0                  # default length of the move into each keyframe
 //   camera: {north: 0, east: 0, down: -1.5, yaw_deg: 0}        # fixed pose when no VEHICLE_STATE
 //   person: {north: 3, east: 0, facing_yaw_deg: 180, skin_tone: light,
@@ -86,9 +86,11 @@ struct ScenarioDistractor {
 // Colour grading of the background photograph: saturation (1 = as shot, 0 = grey) then per-channel gains. The
 // default, a muted and cool look (overcast light), keeps the photographs' warm beige walls from reading as
 // skin to a histogram skin model trained on UCI pixels (with the photos as shot, 2-8 % of building.jpg and
-// 28 % of home.jpg are "skin"); {1, 1, 1} shows them as shot, a nuisance of its own.
+// 28 % of home.jpg are "skin"); {1, 1, 1} shows them as shot, a nuisance of its own. blur_sigma (pixels of
+// the frame at the reference pose) puts the far backdrop a little out of focus, so that its strong window
+// grid does not outweigh the person in a tracker's features (0 = sharp).
 struct BackgroundGrade {
-  double saturation = 0.4, red_gain = 0.85, blue_gain = 1.15;
+  double saturation = 0.4, red_gain = 0.85, blue_gain = 1.15, blur_sigma = 1.5;
 };
 
 struct Keyframe {
