@@ -218,6 +218,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     r.opt(p, "east", "person", s.person_.east, -1e4, 1e4);
     if (const YAML::Node f = p["facing_yaw_deg"]) {
       s.person_.facing_yaw = r.number(f, "person.facing_yaw_deg", -360, 360) * kDeg;
+      s.person_.faces_camera = false;
       facing_given = true;
     }
     if (p["skin_tone"]) s.person_.skin_tone = r.text(p["skin_tone"], "person.skin_tone");

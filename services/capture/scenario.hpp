@@ -11,7 +11,7 @@
 //   transition_s: 1.0                  # default length of the move into each keyframe
 //   camera: {north: 0, east: 0, down: -1.5, yaw_deg: 0}        # fixed pose when no VEHICLE_STATE
 //   person: {north: 3, east: 0, facing_yaw_deg: 180, skin_tone: light,
-//            shirt_bgr: [150, 80, 40], trousers_bgr: [60, 50, 45]}  # facing: default toward the camera
+//            shirt_bgr: [150, 80, 40], trousers_bgr: [60, 50, 45]}  # facing: default, turns to face the camera
 //   distractor: {left: 1.3, up: 1.5, behind: 2.0, radius: 0.12}   # skin-coloured ball, person frame, m
 //   keyframes:
 //     - {t: 0, gesture: REST, right_arm: rest, left_arm: rest}
@@ -73,7 +73,8 @@ struct ScenarioState {
 
 struct ScenarioPerson {
   double north = 3.0, east = 0.0;  //!< the point between the feet, on the ground (down = 0), NED metres
-  double facing_yaw = 0.0;         //!< rad, the direction the person faces
+  double facing_yaw = 0.0;         //!< rad, the direction the person faces (toward the scenario's camera by default)
+  bool faces_camera = true;        //!< turns to keep facing the camera as it moves (false when facing_yaw_deg is given)
   std::string skin_tone = "light";
   std::array<int, 3> shirt_bgr{{150, 82, 40}};
   std::array<int, 3> trousers_bgr{{70, 55, 45}};

@@ -377,7 +377,10 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   v.f = focal_;
   v.cx = 0.5 * params_.width;
   v.cy = 0.5 * params_.height;
-  const double py = person.facing_yaw;
+  // The user watches the drone (the paper's assumption: the user faces the camera): they turn toward it.
+  const double py = person.faces_camera && std::hypot(cam.north - person.north, cam.east - person.east) > 1e-6
+                        ? std::atan2(cam.east - person.east, cam.north - person.north)
+                        : person.facing_yaw;
   v.left = {std::sin(py), -std::cos(py), 0.0};
   v.up = {0.0, 0.0, -1.0};
   v.front = {std::cos(py), std::sin(py), 0.0};
