@@ -132,6 +132,7 @@ class Scenario {
   ScenarioPerson person_;
   ScenarioDistractor distractor_;
   std::vector<Keyframe> keyframes_;
+  std::vector<ScenarioState> starts_;  // the state each keyframe's move starts from
 };
 
 // "REST" -> ground_truth_t::GESTURE_REST ...; -1 if unknown. And back.

@@ -185,6 +185,26 @@ TEST_F(CaptureService, SyntheticPublishesTruthWithItsFrameAndFliesWithTheVehicle
   EXPECT_GT(r.truths.back().face_box[2], 1.4f * r.truths[0].face_box[2]);  // 3 m -> 2 m: 1.5x larger
 }
 
+TEST_F(CaptureService, JpegByConfig) {
+  BusNode node("test", "memq://");
+  Received r;
+  listen(node, r);
+  Config c;
+  c.set("capture.pixel_format=JPEG");
+  c.set("capture.jpeg_quality=80");
+  CaptureOptions o;
+  o.as_fast_as_possible = true;
+  o.duration_s = 0.08;  // 2 frames
+  EXPECT_EQ(run_capture(c, o, node), 0);
+  drain(node);
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].pixel_format, image_t::PIXEL_FORMAT_JPEG);
+  EXPECT_LT(r.frames[0].size, 640 * 480);  // compressed
+  cv::Mat f;
+  ASSERT_EQ(image_to_mat(r.frames[0], f), "");
+  EXPECT_EQ(f.size(), cv::Size(640, 480));
+}
+
 TEST_F(CaptureService, BadPixelFormatIsAConfigError) {
   BusNode node("test", "memq://");
   Config c;
