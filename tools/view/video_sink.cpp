@@ -82,9 +82,10 @@ void VideoSink::start_writer() {
     for (const auto& w : waiting_) t.push_back(w.second);
     fps_ = rate_from_utimes(t, kDefaultFps);
   }
-  open(waiting_.front().first.size());
-  for (const auto& w : waiting_) encode(w.first);
+  const auto frames = std::move(waiting_);  // a failed open drops them: it is not retried at close
   waiting_.clear();
+  open(frames.front().first.size());
+  for (const auto& w : frames) encode(w.first);
 }
 
 void VideoSink::close() {
