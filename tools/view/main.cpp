@@ -54,7 +54,7 @@ class Viewer {
     }
     if (!o.video.empty() || png_n > 0) sink_ = std::make_unique<VideoSink>(o.video, o.fps, png_dir, png_n);
     if (window_) {
-      cv::namedWindow(kWindow, cv::WINDOW_AUTOSIZE);
+      cv::namedWindow(kWindow, cv::WINDOW_AUTOSIZE | cv::WINDOW_GUI_NORMAL);  // image pixels = window pixels
       cv::setMouseCallback(kWindow, &Viewer::on_mouse, this);
     }
   }

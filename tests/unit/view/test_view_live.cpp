@@ -57,7 +57,7 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     const std::string log = (dir / "view.txt").string();
-    freopen(log.c_str(), "w", stderr);
+    if (!freopen(log.c_str(), "w", stderr)) _exit(126);
     execl(kView.c_str(), kView.c_str(), "--lcm-url", url.c_str(), "--headless", "--video", mp4.c_str(), "--fps", "25",
           static_cast<char*>(nullptr));
     _exit(127);
