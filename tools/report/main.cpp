@@ -8,11 +8,9 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "channels.hpp"
+#include "analyze_log.hpp"
 #include "config.hpp"
 #include "decide/decide_params.hpp"
-#include "log_reader.hpp"
-#include "run_summary.hpp"
 #include "service_cli.hpp"
 #include "trajectory_plot.hpp"
 
@@ -28,39 +26,19 @@ std::string json_list(const std::vector<std::string>& items) {
 
 int report(const std::string& log_path, const std::string& out_dir, bool json, int buffer_size) {
   using namespace gpilot;
-  LogReader log(log_path);
-  LogDispatcher d;
-  RunAnalyzer a(buffer_size);
-  d.on<image_t>(channel::kCamera, [&](const image_t& m, int64_t t) { a.on_camera(m, t); });
-  d.on<user_track_t>(channel::kUserTrack, [&](const user_track_t& m, int64_t t) { a.on_track(m, t); });
-  d.on<gesture_cmd_t>(channel::kGestureCmd, [&](const gesture_cmd_t& m, int64_t t) { a.on_command(m, t); });
-  d.on<flight_setpoint_t>(channel::kFlightSetpoint, [&](const flight_setpoint_t& m, int64_t t) { a.on_setpoint(m, t); });
-  d.on<vehicle_state_t>(channel::kVehicleState, [&](const vehicle_state_t& m, int64_t t) { a.on_vehicle(m, t); });
-  d.on<ground_truth_t>(channel::kGroundTruth, [&](const ground_truth_t& m, int64_t t) { a.on_truth(m, t); });
-  d.on<health_t>(channel::kHealth, [&](const health_t& m, int64_t t) { a.on_health(m, t); });
+  const LogAnalysis a = analyse_log(log_path, buffer_size, kName);
+  for (const auto& w : a.warnings) std::fprintf(stderr, "%s: warning: %s\n", kName, w.c_str());
 
-  Progress progress(kName);
-  LogEvent ev;
-  while (log.next(ev)) {
-    d.dispatch(ev);
-    progress.update(log, "reading");
-  }
-  std::vector<std::string> warnings = log.warnings();
-  if (d.rejected_total() > 0)
-    warnings.push_back(std::to_string(d.rejected_total()) + " messages did not decode or were invalid (last: " +
-                       d.last_reject_reason() + ")");
-  for (const auto& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", kName, w.c_str());
-
-  const Summary s = a.summary();
+  const Summary& s = a.summary;
   std::string rejected = "{";
-  for (const auto& [ch, n] : d.rejected_by_channel())
+  for (const auto& [ch, n] : a.rejected)
     rejected += (rejected.size() > 1 ? ", " : "") + json_string(ch) + ": " + std::to_string(n);
   rejected += "}";
   const std::string j = summary_json(s, {{"log", json_string(log_path)},
-                                         {"log_events", std::to_string(log.events_read())},
+                                         {"log_events", std::to_string(a.events)},
                                          {"buffer_size", std::to_string(buffer_size)},
                                          {"rejected_messages", rejected},
-                                         {"warnings", json_list(warnings)}});
+                                         {"warnings", json_list(a.warnings)}});
   if (!out_dir.empty()) {
     namespace fs = std::filesystem;
     fs::create_directories(out_dir);
@@ -70,7 +48,7 @@ int report(const std::string& log_path, const std::string& out_dir, bool json, i
     const std::string title = "gesture-pilot run: " + fs::path(log_path).filename().string() + "  (" +
                               std::to_string(s.vehicle_states) + " vehicle states, " +
                               std::to_string(static_cast<long long>(s.duration_s + 0.5)) + " s)";
-    if (!cv::imwrite(png, draw_trajectory(a.trajectory(), title))) throw std::runtime_error("cannot write " + png);
+    if (!cv::imwrite(png, draw_trajectory(a.path, title))) throw std::runtime_error("cannot write " + png);
     if (!std::ifstream(json_path)) throw std::runtime_error("cannot write " + json_path);
     std::fprintf(stderr, "%s: wrote %s and %s\n", kName, json_path.c_str(), png.c_str());
   }

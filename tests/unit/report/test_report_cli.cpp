@@ -8,7 +8,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "synthetic_run.hpp"
+#include "tool_test_helpers.hpp"
 
 namespace gpilot {
 namespace {
@@ -16,12 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kReport = std::string(GPILOT_BIN_DIR) + "/gpilot-report";
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
+std::string slurp(const std::string& p) {
   std::ifstream in(p);
   std::stringstream ss;
   ss << in.rdbuf();
@@ -31,40 +26,31 @@ std::string slurp(const fs::path& p) {
 class ReportCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("gpilot_report_cli_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
-    log = (dir / "log.lcmlog").string();
+    log = dir / "log.lcmlog";
     run.size = cv::Size(32, 24);
     test::write_synthetic_log(log, run);
   }
-  void TearDown() override { fs::remove_all(dir); }
-  Result report(const std::string& args) {
-    const int status = std::system((kReport + " " + args + " > " + (dir / "out.txt").string() + " 2> " +
-                                    (dir / "err.txt").string()).c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out.txt"), slurp(dir / "err.txt")};
-  }
-  fs::path dir;
+  test::CommandResult report(const std::string& args) { return test::run_tool(kReport, args, dir); }
+  test::ScratchDir dir{"gpilot_report_cli"};
   std::string log;
   test::SyntheticRun run;
 };
 
 TEST_F(ReportCliTest, WritesSummaryAndPlotAndPrintsATable) {
-  const Result r = report(log + " --out " + (dir / "run").string());
+  const test::CommandResult r = report(log + " --out " + dir / "run");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("gesture accuracy  94.7 %"), std::string::npos) << r.out;
-  const std::string j = slurp(dir / "run" / "summary.json");
+  const std::string j = slurp(dir / "run/summary.json");
   EXPECT_NE(j.find("\"accuracy\": 0.947368"), std::string::npos) << j;
   EXPECT_NE(j.find("\"frames\": 100"), std::string::npos);
   EXPECT_NE(j.find("\"frame_to_gesture_cmd\": {\"n\": 100, \"median\": 74, \"p95\": 79}"), std::string::npos) << j;
-  const cv::Mat png = cv::imread((dir / "run" / "trajectory.png").string());
+  const cv::Mat png = cv::imread(dir / "run/trajectory.png");
   ASSERT_FALSE(png.empty());
   EXPECT_GE(png.cols, 1000);
 }
 
 TEST_F(ReportCliTest, JsonOnStdoutAndTheBufferSizeFromConfig) {
-  const Result r = report(log + " --json --set decide.buffer_size=20");
+  const test::CommandResult r = report(log + " --json --set decide.buffer_size=20");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.front(), '{');
   EXPECT_NE(r.out.find("\"settle_frames\": 11"), std::string::npos) << r.out;
@@ -74,18 +60,18 @@ TEST_F(ReportCliTest, JsonOnStdoutAndTheBufferSizeFromConfig) {
 
 TEST_F(ReportCliTest, ATruncatedLogIsReportedWithAWarning) {
   fs::resize_file(log, fs::file_size(log) - 10);
-  const Result r = report(log + " --json");
+  const test::CommandResult r = report(log + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("\"warnings\": [\"log truncated"), std::string::npos) << r.out;
 }
 
 TEST_F(ReportCliTest, MissingOrForeignLogsAreErrors) {
-  Result r = report((dir / "nope.lcmlog").string());
+  test::CommandResult r = report(dir / "nope.lcmlog");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("No such file"), std::string::npos) << r.err;
   std::ofstream(dir / "text.lcmlog") << "not a log\n";
-  r = report((dir / "text.lcmlog").string());
+  r = report(dir / "text.lcmlog");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("not an LCM log"), std::string::npos) << r.err;
   EXPECT_NE(report("").code, 0);  // LOG is required

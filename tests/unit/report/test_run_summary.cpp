@@ -1,39 +1,22 @@
 // gpilot-report's numbers on a synthetic run with known counts, latencies, rates and accuracy.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
-#include "channels.hpp"
-#include "log_reader.hpp"
-#include "run_summary.hpp"
-#include "synthetic_run.hpp"
+#include "analyze_log.hpp"
+#include "tool_test_helpers.hpp"
 
 namespace gpilot {
 namespace {
-
-namespace fs = std::filesystem;
 
 // The default synthetic run: 100 frames at 25 Hz; expected FINE for seq 0..49, CLOSER for 50..99; decided
 // HOVER 0..30, FINE 31..80 (UP at 40), CLOSER 81..99 (FURTHER at 90); GESTURE_CMD 70 + seq % 10 ms after
 // the frame's utime, FLIGHT_SETPOINT 5 ms later; CAMERA received 1 ms after its utime.
 Summary analyse(const test::SyntheticRun& run, int buffer_size, std::vector<TrajectoryPoint>* path = nullptr) {
-  const fs::path file = fs::temp_directory_path() / ("gpilot_run_summary_" + std::to_string(::getpid()) + ".lcmlog");
-  test::write_synthetic_log(file.string(), run);
-  LogReader log(file.string());
-  LogDispatcher d;
-  RunAnalyzer a(buffer_size);
-  d.on<image_t>(channel::kCamera, [&](const image_t& m, int64_t t) { a.on_camera(m, t); });
-  d.on<user_track_t>(channel::kUserTrack, [&](const user_track_t& m, int64_t t) { a.on_track(m, t); });
-  d.on<gesture_cmd_t>(channel::kGestureCmd, [&](const gesture_cmd_t& m, int64_t t) { a.on_command(m, t); });
-  d.on<flight_setpoint_t>(channel::kFlightSetpoint, [&](const flight_setpoint_t& m, int64_t t) { a.on_setpoint(m, t); });
-  d.on<vehicle_state_t>(channel::kVehicleState, [&](const vehicle_state_t& m, int64_t t) { a.on_vehicle(m, t); });
-  d.on<ground_truth_t>(channel::kGroundTruth, [&](const ground_truth_t& m, int64_t t) { a.on_truth(m, t); });
-  d.on<health_t>(channel::kHealth, [&](const health_t& m, int64_t t) { a.on_health(m, t); });
-  LogEvent ev;
-  while (log.next(ev)) d.dispatch(ev);
-  fs::remove(file);
-  if (path) *path = a.trajectory();
-  return a.summary();
+  const test::ScratchDir dir("gpilot_run_summary");
+  test::write_synthetic_log(dir / "run.lcmlog", run);
+  LogAnalysis a = analyse_log(dir / "run.lcmlog", buffer_size);
+  EXPECT_TRUE(a.warnings.empty());
+  if (path) *path = a.path;
+  return a.summary;
 }
 
 class RunSummaryTest : public ::testing::Test {

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
-#include <filesystem>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,12 +12,11 @@
 
 #include "bus_node.hpp"
 #include "clock.hpp"
-#include "synthetic_run.hpp"
+#include "tool_test_helpers.hpp"
 
 namespace gpilot {
 namespace {
 
-namespace fs = std::filesystem;
 const std::string kView = std::string(GPILOT_BIN_DIR) + "/gpilot-view";
 
 struct ViewHealth {
@@ -31,21 +29,9 @@ struct ViewHealth {
   }
 };
 
-// Handles LCM until done() or timeout_s of wall time.
-template <class Done>
-bool wait_for(lcm::LCM& lc, double timeout_s, Done done) {
-  const int64_t end = monotonic_utime() + seconds_to_utime(timeout_s);
-  while (!done()) {
-    if (monotonic_utime() > end) return false;
-    lc.handleTimeout(50);
-  }
-  return true;
-}
-
 TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
-  const fs::path dir = fs::temp_directory_path() / ("gpilot_view_live_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string mp4 = (dir / "annotated.mp4").string();
+  const test::ScratchDir dir("gpilot_view_live");
+  const std::string mp4 = dir / "annotated.mp4";
   const std::string url = kDefaultLcmUrl;
   lcm::LCM lc(url);
   ASSERT_TRUE(lc.good()) << "no multicast route in this namespace";
@@ -56,13 +42,13 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    const std::string log = (dir / "view.txt").string();
+    const std::string log = dir / "view.txt";
     if (!freopen(log.c_str(), "w", stderr)) _exit(126);
     execl(kView.c_str(), kView.c_str(), "--lcm-url", url.c_str(), "--headless", "--video", mp4.c_str(), "--fps", "25",
           static_cast<char*>(nullptr));
     _exit(127);
   }
-  ASSERT_TRUE(wait_for(lc, 20.0, [&] { return health.seen; })) << "gpilot-view never reported HEALTH";
+  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return health.seen; })) << "gpilot-view never reported HEALTH";
 
   // WHEN 20 frames with their per-frame messages are published
   test::SyntheticRun run;
@@ -70,21 +56,10 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
   run.decided_mode = [](int64_t) { return gesture_cmd_t::MODE_FINE; };
   const int kFrames = 20;
   for (int s = 0; s < kFrames; ++s) {
-    const image_t img = test::camera_of(run, s);
-    lc.publish("CAMERA", &img);
-    const auto truth = test::truth_of(run, s);
-    lc.publish("GROUND_TRUTH", &truth);
-    const auto track = test::track_of(run, s);
-    lc.publish("USER_TRACK", &track);
-    const auto hand = test::hand_of(run, s);
-    lc.publish("HAND_OBS", &hand);
-    const auto cmd = test::cmd_of(run, s);
-    lc.publish("GESTURE_CMD", &cmd);
-    const auto vehicle = test::vehicle_of(run, s);
-    lc.publish("VEHICLE_STATE", &vehicle);
+    test::publish_frame(lc, run, s);
     lc.handleTimeout(20);
   }
-  const bool all_in = wait_for(lc, 20.0, [&] {
+  const bool all_in = test::wait_for(lc, 20.0, [&] {
     return health.detail.find("received " + std::to_string(kFrames) + " frames") != std::string::npos;
   });
 
@@ -108,7 +83,6 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
   // The red box edge of frame 5 survives the encoding as clearly red.
   const cv::Vec3b edge = frame5.at<cv::Vec3b>(100, static_cast<int>(test::user_box_of(5).x));
   EXPECT_GT(edge[2] - edge[1], 60) << edge;
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@
 #include "clock.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/tracker_init_t.hpp"
-#include "synthetic_run.hpp"
+#include "tool_test_helpers.hpp"
 
 namespace gpilot {
 namespace {
@@ -36,16 +36,6 @@ struct Heard {
     h->controls.push_back(*m);
   }
 };
-
-template <class Done>
-bool wait_for(lcm::LCM& lc, double timeout_s, Done done) {
-  const int64_t end = monotonic_utime() + seconds_to_utime(timeout_s);
-  while (!done()) {
-    if (monotonic_utime() > end) return false;
-    lc.handleTimeout(50);
-  }
-  return true;
-}
 
 pid_t spawn(const std::vector<std::string>& argv, const std::string& log) {
   const pid_t pid = fork();
@@ -68,11 +58,10 @@ void stop(pid_t pid) {
 TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   if (access("/usr/bin/Xvfb", X_OK) != 0 || access("/usr/bin/xdotool", X_OK) != 0)
     GTEST_SKIP() << "Xvfb or xdotool not installed (deploy/setup installs them)";
-  const fs::path dir = fs::temp_directory_path() / ("gpilot_view_window_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const test::ScratchDir dir("gpilot_view_window");
   const std::string display = ":" + std::to_string(200 + ::getpid() % 700);
   const pid_t xvfb = spawn({"/usr/bin/Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"},
-                           (dir / "xvfb.txt").string());
+                           dir / "xvfb.txt");
   const std::string socket = "/tmp/.X11-unix/X" + display.substr(1);
   for (int i = 0; i < 100 && !fs::exists(socket); ++i) usleep(100000);
   ASSERT_TRUE(fs::exists(socket)) << "Xvfb did not start on " << display;
@@ -84,8 +73,8 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   lc.subscribeFunction("HEALTH", &Heard::health, &heard);
   lc.subscribeFunction("TRACKER_INIT", &Heard::init, &heard);
   lc.subscribeFunction("FLIGHT_CONTROL", &Heard::control, &heard);
-  const pid_t view = spawn({kView, "--lcm-url", kDefaultLcmUrl}, (dir / "view.txt").string());
-  ASSERT_TRUE(wait_for(lc, 20.0, [&] { return !heard.view_detail.empty(); })) << "no HEALTH from gpilot-view";
+  const pid_t view = spawn({kView, "--lcm-url", kDefaultLcmUrl}, dir / "view.txt");
+  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return !heard.view_detail.empty(); })) << "no HEALTH from gpilot-view";
 
   // GIVEN the window showing frames
   test::SyntheticRun run;
@@ -95,7 +84,7 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
     lc.publish("CAMERA", &img);
     lc.handleTimeout(30);
   }
-  ASSERT_TRUE(wait_for(lc, 20.0, [&] { return heard.view_detail.find("received 8 frames, drew") != std::string::npos; }))
+  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return heard.view_detail.find("received 8 frames, drew") != std::string::npos; }))
       << heard.view_detail;
   const std::string xdo = "DISPLAY=" + display + " /usr/bin/xdotool ";
   const std::string win = "$(" + xdo + "search --sync --onlyvisible --name '^gpilot-view$' | head -1)";
@@ -108,7 +97,7 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
             0);
 
   // THEN the bus hears the box in image pixels, the reset and the engage, each from gpilot-view
-  EXPECT_TRUE(wait_for(lc, 10.0, [&] { return heard.inits.size() >= 2 && !heard.controls.empty(); }));
+  EXPECT_TRUE(test::wait_for(lc, 10.0, [&] { return heard.inits.size() >= 2 && !heard.controls.empty(); }));
   stop(view);
   stop(xvfb);
   ASSERT_GE(heard.inits.size(), 2u);
@@ -121,7 +110,6 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   EXPECT_EQ(heard.inits[1].command, tracker_init_t::COMMAND_RESET);
   ASSERT_FALSE(heard.controls.empty());
   EXPECT_EQ(heard.controls[0].command, flight_control_t::COMMAND_ENGAGE);
-  fs::remove_all(dir);
 }
 
 }  // namespace
