@@ -13,7 +13,8 @@ function(gpilot_add_test)
   target_compile_definitions(${T_NAME} PRIVATE GPILOT_SHARED_DIR="${GPILOT_SHARED_DIR}")
   if(T_NETNS)
     add_test(NAME ${T_NAME} COMMAND ${CMAKE_SOURCE_DIR}/tests/netns-run $<TARGET_FILE:${T_NAME}>)
-    set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_RETURN_CODE 77)
+    set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_RETURN_CODE 77
+      SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")
   else()
     gtest_discover_tests(${T_NAME} DISCOVERY_MODE PRE_TEST
       PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")

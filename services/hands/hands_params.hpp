@@ -34,6 +34,7 @@ struct HandsParams {
   double lambda3 = 0.013;           //!< Alg. 2 weight of F_skin (paper λ3)
   double front_gate_ratio = 0.2;    //!< Alg. 2 accepts |p_bc.x - p.x| < ratio × w (paper w/5)
   int front_min_skin = 30;          //!< Alg. 2 accepts F_skin above this (paper 30)
+  int match_window = 15;            //!< frames/tracks wait this many seqs for their partner, then are dropped
 
   template <class V>
   void visit(V& v) {
@@ -52,6 +53,7 @@ struct HandsParams {
     v("lambda3", lambda3, 0.0, 100.0, "Alg. 2 weight of F_skin (paper 0.013)");
     v("front_gate_ratio", front_gate_ratio, 0.0, 1.0, "Alg. 2: |p_bc.x - p.x| below ratio x box width (paper 1/5)");
     v("front_min_skin", front_min_skin, 0, 1000000, "Alg. 2: F_skin needed, more than (paper 30)");
+    v("match_window", match_window, 1, 1000, "CAMERA/USER_TRACK pairing: seqs an unmatched one waits before it is dropped");
   }
 };
 

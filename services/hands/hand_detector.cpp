@@ -1,0 +1,134 @@
+#include "hand_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <opencv2/imgproc.hpp>
+
+namespace gpilot {
+
+const char* hand_kind_name(HandKind k) {
+  switch (k) {
+    case HandKind::Out: return "OUT";
+    case HandKind::Front: return "FRONT";
+    default: return "NONE";
+  }
+}
+
+HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size image) {
+  HandGeometry g;
+  if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.width) || !std::isfinite(b.height) || b.width <= 0 ||
+      b.height <= 0)
+    return g;
+  const cv::Rect frame(0, 0, image.width, image.height);
+  auto rect = [&](double x0, double y0, double x1, double y1) {
+    const auto r = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
+    return cv::Rect(cv::Point(r(x0), r(y0)), cv::Point(r(x1), r(y1))) & frame;
+  };
+  const double x = b.x, y = b.y, w = b.width, h = b.height;
+  g.box = rect(x, y, x + w, y + h);
+  g.roi = rect(x - p.roi_extend_side * w, y - p.roi_extend_top * h, x + w + p.roi_extend_side * w, y + h + p.roi_extend_bottom * h);
+  g.shoulder_centre = cv::Point2f(static_cast<float>(x + w / 2), static_cast<float>(y + p.shoulder_centre_ratio * h));
+  g.body_centre = cv::Point2f(static_cast<float>(x + w / 2), static_cast<float>(y + p.body_centre_ratio * h));
+  g.width = static_cast<float>(w);
+  g.hand_side = std::max(1, static_cast<int>(std::lround(w * p.hand_square_ratio)));
+  g.face_rows_end = static_cast<int>(std::lround(y + p.face_remove_ratio * h));
+  g.legs_rows_begin = static_cast<int>(std::lround(y + h - p.legs_remove_ratio * h));
+  g.valid = g.box.width >= 4 && g.box.height >= 4;
+  return g;
+}
+
+HandDetector::HandDetector(const HandsParams& params, SkinClassifier skin) : params_(params), skin_(std::move(skin)) {
+  if (skin_.empty()) throw SkinModelError("hand detector needs a skin classifier");
+}
+
+HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box) {
+  CV_Assert(bgr.type() == CV_8UC3);
+  const HandGeometry g = hand_geometry(params_, user_box, bgr.size());
+  last_roi_ = g.valid ? g.roi : cv::Rect();
+  if (!g.valid) {
+    mask_.release();
+    HandResult r;
+    r.geometry = g;
+    return r;
+  }
+  skin_.classify(bgr(g.roi), mask_);
+  // Face/neck and legs/feet: rows of the user box (box columns only) cleared by the preset ratios.
+  const cv::Rect top(g.box.x, g.box.y, g.box.width, std::max(0, g.face_rows_end - g.box.y));
+  const cv::Rect bottom(g.box.x, g.legs_rows_begin, g.box.width, std::max(0, g.box.br().y - g.legs_rows_begin));
+  for (const cv::Rect& r : {top & g.box, bottom & g.box})
+    if (!r.empty()) mask_(r - g.roi.tl()).setTo(0);
+  return run(mask_, g.roi.tl(), g);
+}
+
+HandResult HandDetector::detect_on_mask(const cv::Mat& mask, cv::Point origin, const HandGeometry& geometry) {
+  CV_Assert(mask.type() == CV_8UC1);
+  cv::Mat binary = cv::min(mask, 1);
+  return run(binary, origin, geometry);
+}
+
+HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGeometry& g) {
+  HandResult res;
+  res.geometry = g;
+  if (!g.valid || mask.empty()) return res;
+  cv::integral(mask, integral_, CV_32S);
+  const int side = g.hand_side, half = side / 2;
+  const int cols = mask.cols, rows = mask.rows;
+  // F_skin at mask pixel (x, y): the side x side square [x - half, x - half + side) clipped to the mask.
+  auto f_skin = [&](int x, int y) {
+    const int x0 = std::max(0, x - half), x1 = std::min(cols, x - half + side);
+    const int y0 = std::max(0, y - half), y1 = std::min(rows, y - half + side);
+    return integral_.at<int32_t>(y1, x1) - integral_.at<int32_t>(y0, x1) - integral_.at<int32_t>(y1, x0) +
+           integral_.at<int32_t>(y0, x0);
+  };
+  const double l1 = params_.lambda1, l2 = params_.lambda2, l3 = params_.lambda3;
+  const double ucx = g.shoulder_centre.x, ucy = g.shoulder_centre.y, bcx = g.body_centre.x;
+  double best_out = -std::numeric_limits<double>::infinity(), best_front = best_out;
+  cv::Point p_out, p_front;
+  int f_out = 0, f_front = 0;
+  for (int y = 0; y < rows; ++y) {
+    const uint8_t* m = mask.ptr<uint8_t>(y);
+    const int iy = y + origin.y;
+    const bool row_in_box = iy >= g.box.y && iy < g.box.y + g.box.height;
+    for (int x = 0; x < cols; ++x) {
+      if (!m[x]) continue;
+      const int ix = x + origin.x;
+      const int f = f_skin(x, y);
+      if (row_in_box && ix >= g.box.x && ix < g.box.x + g.box.width) {
+        ++res.skin_inside;
+        const double s = -std::abs(bcx - ix) + l3 * f;
+        if (s > best_front) {
+          best_front = s;
+          p_front = {ix, iy};
+          f_front = f;
+        }
+      } else {
+        ++res.skin_outside;
+        const double s = std::abs(ucx - ix) + l2 * (ucy - iy) + l1 * f;
+        if (s > best_out) {
+          best_out = s;
+          p_out = {ix, iy};
+          f_out = f;
+        }
+      }
+    }
+  }
+  res.front_candidate_skin = f_front;
+  auto set = [&](HandKind kind, cv::Point p, int f, cv::Point2f ref) {
+    res.kind = kind;
+    res.hand = p;
+    res.hand_skin = f;
+    res.vector = cv::Point2f(static_cast<float>(p.x) - ref.x, static_cast<float>(p.y) - ref.y);
+    res.hand_box = cv::Rect(p.x - half, p.y - half, side, side);
+  };
+  if (res.skin_outside > params_.out_min_skin) {
+    set(HandKind::Out, p_out, f_out, g.shoulder_centre);
+  } else if (res.skin_inside > 0 && std::abs(bcx - p_front.x) < params_.front_gate_ratio * g.width &&
+             f_front > params_.front_min_skin) {
+    set(HandKind::Front, p_front, f_front, g.body_centre);
+  }
+  return res;
+}
+
+}  // namespace gpilot

@@ -1,0 +1,77 @@
+// The paper's hand detection for one frame and one user box (w = box width):
+//   skin mask (one table lookup a pixel) inside the search rectangle extended from the user box, with the
+//   face/neck and legs/feet rows of the box removed; F_skin(p) = skin pixels in the w/4 square centred at p,
+//   from an integral image (O(1) a pixel);
+//   Alg. 1: more than out_min_skin skin pixels outside the box -> argmax over them of
+//           |p_uc.x - p.x| + λ2 (p_uc.y - p.y) + λ1 F_skin(p), result p - p_uc (KIND OUT);
+//   Alg. 2 (only if Alg. 1 found nothing): argmax over skin pixels inside the box of
+//           -|p_bc.x - p.x| + λ3 F_skin(p), accepted if |p_bc.x - p.x| < w/5 and F_skin > 30, result p - p_bc.
+// Pure: no LCM, no clock. Image axes: x right, y down, pixels.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "hands/hands_params.hpp"
+#include "hands/skin_model.hpp"
+
+namespace gpilot {
+
+enum class HandKind { None = 0, Out = 1, Front = 2 };  // same values as hand_obs_t::KIND_*
+
+const char* hand_kind_name(HandKind k);
+
+// Where the paper's reference points and rectangles are for one user box.
+struct HandGeometry {
+  cv::Rect box;                 //!< user box, whole pixels, clipped to the image
+  cv::Rect roi;                 //!< search rectangle (box extended), clipped to the image
+  cv::Point2f shoulder_centre;  //!< p_uc
+  cv::Point2f body_centre;      //!< p_bc
+  float width = 0;              //!< w: the user box width as given (the clipped box may be narrower)
+  int hand_side = 0;            //!< hand square side, pixels (w/4)
+  int face_rows_end = 0;        //!< box rows y < this are removed (face, neck)
+  int legs_rows_begin = 0;      //!< box rows y >= this are removed (legs, feet)
+  bool valid = false;           //!< false for a box too small or off the image
+};
+
+// user_box: x, y (top-left), width, height in pixels. image: the frame's size.
+HandGeometry hand_geometry(const HandsParams& params, const cv::Rect2f& user_box, cv::Size image);
+
+struct HandResult {
+  HandKind kind = HandKind::None;
+  HandGeometry geometry;
+  cv::Point hand{0, 0};      //!< chosen pixel (OUT/FRONT)
+  cv::Point2f vector{0, 0};  //!< hand - p_uc (OUT) or hand - p_bc (FRONT); zero for NONE
+  cv::Rect hand_box;         //!< the hand square at the chosen pixel (empty for NONE)
+  int hand_skin = 0;         //!< F_skin at the chosen pixel
+  int skin_outside = 0;      //!< skin pixels outside the box, inside the search rectangle
+  int skin_inside = 0;       //!< skin pixels inside the box after the removals
+  int front_candidate_skin = 0;  //!< F_skin of Alg. 2's argmax even when its gates refused it
+};
+
+class HandDetector {
+ public:
+  // Throws SkinModelError if the classifier is empty.
+  HandDetector(const HandsParams& params, SkinClassifier skin);
+
+  // Whole stage for one frame (CV_8UC3 BGR).
+  HandResult detect(const cv::Mat& bgr, const cv::Rect2f& user_box);
+
+  // Alg. 1 then Alg. 2 on a ready skin mask (CV_8UC1, nonzero = skin) whose top-left pixel is image pixel
+  // origin. Removals are NOT applied here: the mask is used as given (detect() applies them first).
+  HandResult detect_on_mask(const cv::Mat& mask, cv::Point origin, const HandGeometry& geometry);
+
+  // The skin mask of the last detect() over its search rectangle (0/1, removals applied), and where it is.
+  const cv::Mat& last_mask() const { return mask_; }
+  cv::Rect last_roi() const { return last_roi_; }
+  const HandsParams& params() const { return params_; }
+
+ private:
+  HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
+
+  HandsParams params_;
+  SkinClassifier skin_;
+  cv::Mat mask_, integral_;
+  cv::Rect last_roi_;
+};
+
+}  // namespace gpilot

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# GIVEN Xvfb and a gpilot process publishing HEALTH, WHEN ./deploy/spy starts, THEN it loads every gpilot
+# type from our jar, its window appears, and a screenshot of the decoded HEALTH channel is saved.
+set -u
+build="$1"; ntypes="$2"
+root="$(cd "$(dirname "$0")/../../.." && pwd)"
+out="$build/e2e/spy"; mkdir -p "$out"
+for t in Xvfb xdotool import java; do
+  command -v "$t" >/dev/null || { echo "SKIPPED: $t not installed (deploy/setup installs it)"; exit 77; }
+done
+display=":$((90 + RANDOM % 100))"
+Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 & xvfb=$!
+health=""; spy=""
+cleanup() { kill $spy $health 2>/dev/null; kill $xvfb 2>/dev/null; wait 2>/dev/null; }
+trap cleanup EXIT
+export DISPLAY="$display"
+sleep 1
+"$build/bin/gpilot-health" --duration 30 >/dev/null & health=$!
+"$root/deploy/spy" >"$out/spy.log" 2>&1 & spy=$!
+win=""
+for _ in $(seq 1 40); do
+  win=$(xdotool search --name 'LCM Spy' 2>/dev/null | head -1)
+  [ -n "$win" ] && grep -q "Found .* LCM types" "$out/spy.log" && break
+  sleep 0.5
+done
+[ -n "$win" ] || { echo "FAIL: no 'LCM Spy' window"; cat "$out/spy.log"; exit 1; }
+grep -q "^Found $ntypes LCM types" "$out/spy.log" || { echo "FAIL: expected 'Found $ntypes LCM types'"; cat "$out/spy.log"; exit 1; }
+sleep 3  # a few HEALTH messages arrive
+xdotool mousemove --window "$win" 60 27 click --repeat 2 1
+sleep 2
+import -window root "$out/lcm-spy.png"
+kill -0 $spy 2>/dev/null || { echo "FAIL: lcm-spy exited"; cat "$out/spy.log"; exit 1; }
+grep -qi "exception" "$out/spy.log" && { echo "FAIL: lcm-spy raised an exception"; cat "$out/spy.log"; exit 1; }
+echo "lcm-spy found $ntypes types; screenshot: $out/lcm-spy.png"

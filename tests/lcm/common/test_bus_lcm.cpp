@@ -1,0 +1,132 @@
+// Real LCM traffic (inside the private network namespace that tests/netns-run makes): a 1280x720 BGR
+// frame arrives byte-identical, and malformed or invalid messages are counted with a reason in HEALTH
+// while the receiving node keeps running.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <optional>
+
+#include "bus_node.hpp"
+#include "image_codec.hpp"
+
+namespace gpilot {
+namespace {
+
+const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
+bool rmem_allows_720p() {
+  std::ifstream in("/proc/sys/net/core/rmem_max");
+  int64_t v = 0;
+  in >> v;
+  return v >= 4194304;
+}
+
+// Spins node until pred() holds or 3 s pass.
+template <class Pred>
+bool spin_until(BusNode& node, Pred pred) {
+  const int64_t end = monotonic_utime() + 3'000'000;
+  while (!pred() && monotonic_utime() < end) node.spin_once(20);
+  return pred();
+}
+
+TEST(BusLcm, FullHdFrameArrivesByteIdentical) {
+  if (!rmem_allows_720p()) GTEST_SKIP() << "net.core.rmem_max < 4 MiB: 1280x720 frames cannot be received here";
+  BusNode rx("rx", kUrl), tx("tx", kUrl);
+  std::optional<image_t> got;
+  rx.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) { got = m; });
+
+  cv::Mat frame(720, 1280, CV_8UC3);
+  cv::randu(frame, 0, 256);
+  const image_t sent = mat_to_image(frame, 1700000000000001, 77);
+  ASSERT_EQ(sent.size, 1280 * 720 * 3);
+  tx.publish("CAMERA", sent);
+  ASSERT_TRUE(spin_until(rx, [&] { return got.has_value(); })) << "no frame within 3 s";
+  EXPECT_EQ(got->seq, 77);
+  EXPECT_EQ(got->utime, 1700000000000001);
+  EXPECT_EQ(got->data, sent.data);
+  cv::Mat back;
+  ASSERT_EQ(image_to_mat(*got, back), "");
+  EXPECT_EQ(cv::norm(frame, back, cv::NORM_INF), 0.0);
+  EXPECT_EQ(rx.stats().accepted_count(), 1);
+  EXPECT_EQ(rx.stats().rejected_count(), 0);
+}
+
+TEST(BusLcm, BadMessagesAreCountedAndReportedInHealth) {
+  BusNode rx("gpilot-test-rx", kUrl), tx("tx", kUrl), monitor("monitor", kUrl);
+  int images = 0, commands = 0;
+  rx.subscribe<image_t>("CAMERA", [&](const image_t&, int64_t) { ++images; });
+  rx.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t&, int64_t) { ++commands; });
+  std::optional<health_t> health;
+  monitor.subscribe<health_t>("HEALTH", [&](const health_t& h, int64_t) {
+    if (h.name == "gpilot-test-rx") health = h;
+  });
+
+  // GIVEN a valid frame, then the same frame truncated to half its bytes
+  const image_t good = mat_to_image(cv::Mat(48, 64, CV_8UC3, cv::Scalar(10, 20, 30)), 1, 1);
+  std::vector<uint8_t> bytes(good.getEncodedSize());
+  good.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  tx.publish("CAMERA", good);
+  tx.publish_raw("CAMERA", bytes.data(), bytes.size() / 2);
+  // AND a frame whose data is too small for its width x height
+  image_t wrong = good;
+  wrong.height = 96;
+  tx.publish("CAMERA", wrong);
+  // AND a command with a NaN, then a valid one
+  gesture_cmd_t cmd{};
+  cmd.direction[0] = std::numeric_limits<float>::quiet_NaN();
+  tx.publish("GESTURE_CMD", cmd);
+  cmd.direction[0] = 0.5f;
+  tx.publish("GESTURE_CMD", cmd);
+
+  // WHEN the receiver handles them
+  ASSERT_TRUE(spin_until(rx, [&] { return rx.stats().accepted_count() + rx.stats().rejected_count() >= 5; }));
+  // THEN only the valid ones reached the handlers, the rest were counted with a reason
+  EXPECT_EQ(images, 1);
+  EXPECT_EQ(commands, 1);
+  EXPECT_EQ(rx.stats().rejected_count(), 3);
+  EXPECT_EQ(rx.stats().last_reject_reason(), "GESTURE_CMD: direction is not finite");
+
+  // AND its HEALTH says so on the bus, and it is still running
+  rx.publish_health();
+  ASSERT_TRUE(spin_until(monitor, [&] { return health.has_value(); }));
+  EXPECT_EQ(health->rejected, 3);
+  EXPECT_EQ(health->messages_in, 2);
+  EXPECT_EQ(health->last_reject_reason, "GESTURE_CMD: direction is not finite");
+  tx.publish("CAMERA", good);
+  ASSERT_TRUE(spin_until(rx, [&] { return images == 2; }));
+}
+
+TEST(BusLcm, TruncatedImageReasonNamesTheType) {
+  BusNode rx("rx", kUrl), tx("tx", kUrl);
+  rx.subscribe<image_t>("CAMERA", [&](const image_t&, int64_t) {});
+  const uint8_t junk[5] = {1, 2, 3, 4, 5};
+  tx.publish_raw("CAMERA", junk, sizeof junk);
+  ASSERT_TRUE(spin_until(rx, [&] { return rx.stats().rejected_count() == 1; }));
+  EXPECT_EQ(rx.stats().last_reject_reason(),
+            "CAMERA: 5 bytes do not decode as gpilot.image_t (truncated, malformed or another type)");
+}
+
+TEST(BusLcm, TimersRunFromTheLoop) {
+  BusNode node("timer", kUrl);
+  int ticks = 0;
+  node.every(0.01, [&] { ++ticks; });
+  const int64_t end = monotonic_utime() + 200'000;
+  while (monotonic_utime() < end) node.spin_once(50);
+  EXPECT_GE(ticks, 10);
+  EXPECT_LE(ticks, 21);
+}
+
+TEST(BusLcm, BadUrlIsAClearError) {
+  // An unusable URL: construction fails with a message instead of giving a silent node.
+  try {
+    BusNode node("bad", "udpm://300.1.1.1:7667?ttl=0");
+    FAIL() << "expected BusError";
+  } catch (const BusError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot start LCM"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace gpilot

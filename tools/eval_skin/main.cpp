@@ -1,0 +1,113 @@
+// gpilot-eval-skin: scores a skin model on labelled data: precision, recall, F1 at the configured threshold
+// (hands.skin.threshold), the best-F1 threshold, the ROC curve (PNG) and its area.
+#include <cstdio>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "hands/hands_params.hpp"
+#include "hands/skin_data.hpp"
+#include "hands/skin_model.hpp"
+#include "paths.hpp"
+#include "service_cli.hpp"
+
+using namespace gpilot;
+
+namespace {
+
+void write_roc_png(const std::string& path, const LevelCounts& counts, const LevelCounts::Score& at, const std::string& title) {
+  const int size = 480, margin = 50;
+  cv::Mat img(size + 2 * margin, size + 2 * margin, CV_8UC3, cv::Scalar(255, 255, 255));
+  auto pt = [&](double fpr, double tpr) {
+    return cv::Point(margin + static_cast<int>(fpr * size), margin + size - static_cast<int>(tpr * size));
+  };
+  for (int i = 0; i <= 10; ++i) {
+    cv::line(img, pt(i / 10.0, 0), pt(i / 10.0, 1), cv::Scalar(230, 230, 230));
+    cv::line(img, pt(0, i / 10.0), pt(1, i / 10.0), cv::Scalar(230, 230, 230));
+  }
+  cv::rectangle(img, pt(0, 1), pt(1, 0), cv::Scalar(0, 0, 0));
+  cv::line(img, pt(0, 0), pt(1, 1), cv::Scalar(180, 180, 180));
+  const auto roc = counts.roc();
+  for (size_t i = 1; i < roc.size(); ++i)
+    cv::line(img, pt(roc[i - 1].false_positive_rate, roc[i - 1].recall), pt(roc[i].false_positive_rate, roc[i].recall),
+             cv::Scalar(200, 60, 0), 2, cv::LINE_AA);
+  cv::circle(img, pt(at.false_positive_rate, at.recall), 6, cv::Scalar(0, 0, 220), 2, cv::LINE_AA);
+  const auto font = cv::FONT_HERSHEY_SIMPLEX;
+  cv::putText(img, title, cv::Point(margin, 30), font, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "AUC %.4f  threshold %.2f: P %.3f R %.3f F1 %.3f", counts.auc(), at.threshold, at.precision,
+                at.recall, at.f1);
+  cv::putText(img, buf, cv::Point(margin + 10, margin + size - 15), font, 0.45, cv::Scalar(0, 0, 180), 1, cv::LINE_AA);
+  cv::putText(img, "false positive rate", cv::Point(margin + size / 2 - 70, margin + size + 35), font, 0.5, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
+  cv::putText(img, "TPR", cv::Point(8, margin + size / 2), font, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  if (!cv::imwrite(path, img)) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ServiceCli cli("gpilot-eval-skin",
+                 "Scores a skin model on labelled data: precision, recall and F1 at the threshold, the ROC curve (PNG).\n"
+                 "Data: --pixels FILE (UCI layout: B G R label, 1 = skin, 2 = not) or --images DIR --masks DIR (paired by\n"
+                 "file stem; mask 255 = skin, 0 = not, exactly 128 = ignore, other values skin when > 128).");
+  std::string pixels, images, masks, model_path, roc_png;
+  double threshold = -1;
+  bool json = false;
+  auto& app = cli.app();
+  app.add_option("--pixels", pixels, "labelled pixel file (UCI layout)")->check(CLI::ExistingFile);
+  app.add_option("--images", images, "image folder")->check(CLI::ExistingDirectory);
+  app.add_option("--masks", masks, "mask folder")->check(CLI::ExistingDirectory);
+  app.add_option("--model", model_path, "model file (default: hands.skin.model of the config)");
+  app.add_option("--threshold", threshold, "P(skin) threshold (default: hands.skin.threshold of the config)")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--roc", roc_png, "write the ROC curve to this PNG");
+  app.add_flag("--json", json, "print one JSON object on stdout");
+  return cli.run(argc, argv, [&](const Config& config) {
+    if (pixels.empty() == images.empty() || images.empty() != masks.empty()) {
+      std::fprintf(stderr, "gpilot-eval-skin: give either --pixels FILE or --images DIR --masks DIR\n");
+      return 2;
+    }
+    const auto params = config.section<HandsParams>("hands");
+    if (model_path.empty()) model_path = resolve_project_path(params.skin.model);
+    if (threshold < 0) threshold = params.skin.threshold;
+    const SkinModel model = SkinModel::load(model_path);
+    LevelCounts counts;
+    std::string data;
+    if (!pixels.empty()) {
+      counts.add_pixels(model, read_uci_pixels(pixels));
+      data = pixels;
+    } else {
+      const auto pairs = pair_images_and_masks(images, masks);
+      for (size_t i = 0; i < pairs.size(); ++i) {
+        cv::Mat bgr, mask;
+        read_pair(pairs[i], bgr, mask);
+        counts.add_image(model, bgr, mask);
+        if ((i + 1) % 100 == 0 || i + 1 == pairs.size()) std::fprintf(stderr, "\r%zu/%zu images", i + 1, pairs.size());
+      }
+      std::fprintf(stderr, "\n");
+      data = images + " (" + std::to_string(pairs.size()) + " images)";
+    }
+    const auto at = counts.score(threshold);
+    LevelCounts::Score best;
+    for (const auto& s : counts.roc())
+      if (s.f1 > best.f1) best = s;
+    if (!roc_png.empty()) write_roc_png(roc_png, counts, at, data);
+    if (json) {
+      std::printf(
+          "{\"model\":\"%s\",\"data\":\"%s\",\"threshold\":%.4f,\"precision\":%.4f,\"recall\":%.4f,\"f1\":%.4f,"
+          "\"false_positive_rate\":%.4f,\"auc\":%.4f,\"skin_pixels\":%lld,\"non_skin_pixels\":%lld,"
+          "\"best_f1\":%.4f,\"best_f1_threshold\":%.4f}\n",
+          model_path.c_str(), data.c_str(), at.threshold, at.precision, at.recall, at.f1, at.false_positive_rate, counts.auc(),
+          static_cast<long long>(counts.skin_total()), static_cast<long long>(counts.non_skin_total()), best.f1, best.threshold);
+    } else {
+      std::printf("model      %s\ndata       %s\npixels     %lld skin, %lld not skin\n", model_path.c_str(), data.c_str(),
+                  static_cast<long long>(counts.skin_total()), static_cast<long long>(counts.non_skin_total()));
+      std::printf("threshold  %.3f\nprecision  %.4f\nrecall     %.4f\nF1         %.4f\nFPR        %.4f\nROC AUC    %.4f\n",
+                  at.threshold, at.precision, at.recall, at.f1, at.false_positive_rate, counts.auc());
+      std::printf("(best F1 on this data %.4f at threshold %.3f: for information, not for choosing the threshold)\n", best.f1,
+                  best.threshold);
+    }
+    return 0;
+  });
+}

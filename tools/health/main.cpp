@@ -1,0 +1,33 @@
+// gpilot-health: a terminal table of every gpilot process's HEALTH (state, rates, rejections, timing).
+// Reads HEALTH; like every process it also publishes its own.
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "service_cli.hpp"
+
+int main(int argc, char** argv) {
+  gpilot::ServiceCli cli("gpilot-health", "Show the HEALTH of every gpilot process on the bus, once a second.");
+  double duration_s = 0;
+  cli.app().add_option("--duration", duration_s, "stop after this many seconds (default: until Ctrl-C)");
+  return cli.run_node(argc, argv, [&](const gpilot::Config&, gpilot::BusNode& node) {
+    std::map<std::string, gpilot::health_t> latest;
+    node.subscribe<gpilot::health_t>("HEALTH", [&](const gpilot::health_t& h, int64_t) { latest[h.name] = h; });
+    static const char* kStates[] = {"STARTING", "OK", "DEGRADED", "ERROR", "STOPPING"};
+    node.every(1.0, [&] {
+      std::printf("%-22s %-9s %8s %8s %8s %8s %7s %7s  %s\n", "process", "state", "in/s", "out/s", "rejected",
+                  "dropped", "p50 ms", "p99 ms", "detail / last rejection");
+      for (const auto& [name, h] : latest)
+        std::printf("%-22s %-9s %8.1f %8.1f %8lld %8lld %7.2f %7.2f  %s%s%s\n", name.c_str(), kStates[h.state],
+                    h.rate_in_hz, h.rate_out_hz, static_cast<long long>(h.rejected),
+                    static_cast<long long>(h.dropped), h.processing_ms_p50, h.processing_ms_p99,
+                    h.state_detail.c_str(), h.last_reject_reason.empty() ? "" : " | ", h.last_reject_reason.c_str());
+      std::printf("\n");
+      std::fflush(stdout);
+    });
+    if (duration_s > 0) node.every(duration_s, [&] { node.stop(); });
+    node.set_state(gpilot::health_t::STATE_OK, "monitoring");
+    node.run();
+    return 0;
+  });
+}

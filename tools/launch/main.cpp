@@ -1,0 +1,216 @@
+// gpilot-launch: starts the processes of deploy/services.yaml in order, restarts the ones that die,
+// shows progress (time, frames, mode, each stage's rate) and stops them all cleanly, in reverse order, on
+// Ctrl-C, at --duration, or when a service marked ends_run exits. Reads HEALTH and GESTURE_CMD; writes
+// FLIGHT_CONTROL (with --engage) and its own HEALTH.
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "clock.hpp"
+#include "paths.hpp"
+#include "service_cli.hpp"
+#include "service_set.hpp"
+
+namespace fs = std::filesystem;
+
+namespace gpilot {
+namespace {
+
+const char* kModeNames[] = {"HOVER", "FINE", "UP", "DOWN", "CLOSER", "FURTHER"};
+
+struct Child {
+  ServiceSpec spec;
+  std::string path;
+  pid_t pid = -1;
+  int restarts = 0;
+  int64_t restart_at = 0;  // monotonic us; 0 = none pending
+};
+
+std::string find_binary(const std::string& word, const std::string& bin_dir) {
+  if (word.find('/') != std::string::npos) return word;
+  const fs::path local = fs::path(bin_dir) / word;
+  if (fs::exists(local)) return local.string();
+  std::stringstream path(std::getenv("PATH") ? std::getenv("PATH") : "");
+  for (std::string dir; std::getline(path, dir, ':');)
+    if (!dir.empty() && fs::exists(fs::path(dir) / word)) return (fs::path(dir) / word).string();
+  return "";
+}
+
+pid_t spawn(const Child& c) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);  // own group: the terminal's Ctrl-C reaches the launcher, which stops children in order
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(c.path.c_str()));
+    for (size_t i = 1; i < c.spec.command.size(); ++i) argv.push_back(const_cast<char*>(c.spec.command[i].c_str()));
+    argv.push_back(nullptr);
+    execv(c.path.c_str(), argv.data());
+    std::fprintf(stderr, "gpilot-launch: cannot exec %s: %s\n", c.path.c_str(), std::strerror(errno));
+    _exit(127);
+  }
+  return pid;
+}
+
+void stop_child(Child& c) {
+  if (c.pid <= 0) return;
+  kill(c.pid, c.spec.stop_signal);
+  const int64_t deadline = monotonic_utime() + seconds_to_utime(c.spec.stop_timeout_s);
+  int status = 0;
+  while (monotonic_utime() < deadline) {
+    if (waitpid(c.pid, &status, WNOHANG) == c.pid) {
+      c.pid = -1;
+      return;
+    }
+    usleep(20000);
+  }
+  std::fprintf(stderr, "gpilot-launch: %s did not stop within %.1f s: SIGKILL\n", c.spec.name.c_str(), c.spec.stop_timeout_s);
+  kill(c.pid, SIGKILL);
+  waitpid(c.pid, &status, 0);
+  c.pid = -1;
+}
+
+}  // namespace
+}  // namespace gpilot
+
+int main(int argc, char** argv) {
+  using namespace gpilot;
+  ServiceCli cli("gpilot-launch", "Start, watch, restart and stop the gesture-pilot processes of deploy/services.yaml.");
+  std::string services_file = "deploy/services.yaml";
+  std::vector<std::string> var_args;
+  std::string systemd_dir;
+  double duration_s = 0;
+  bool engage = false;
+  std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
+  cli.app().add_option("--services", services_file, "services file (relative paths: from the project root)");
+  cli.app().add_option("--var", var_args, "name=value for ${name} in the services file (repeatable)");
+  cli.app().add_option("--systemd", systemd_dir, "write one systemd unit per service into DIR and exit");
+  cli.app().add_option("--duration", duration_s, "stop everything after this many seconds");
+  cli.app().add_flag("--engage", engage, "send FLIGHT_CONTROL engage once gpilot-flight reports");
+  cli.app().add_option("--bin-dir", bin_dir, "where the gpilot binaries are (default: beside this one)");
+
+  return cli.run(argc, argv, [&](const Config&) -> int {
+    std::map<std::string, std::string> vars;
+    for (const auto& a : var_args) {
+      const auto eq = a.find('=');
+      if (eq == std::string::npos) throw ServiceSetError("--var '" + a + "': expected name=value");
+      vars[a.substr(0, eq)] = a.substr(eq + 1);
+    }
+    const std::string url = resolve_lcm_url(cli.lcm_url());
+    vars.emplace("lcm_url", url);
+    std::ifstream in(resolve_project_path(services_file));
+    if (!in) throw ServiceSetError(services_file + ": cannot open");
+    std::stringstream text;
+    text << in.rdbuf();
+    const auto specs = parse_service_set(text.str(), vars);
+
+    if (!systemd_dir.empty()) {
+      fs::create_directories(systemd_dir);
+      std::string after;
+      for (const auto& s : specs) {
+        if (s.ends_run) continue;  // run-bounded processes (a scenario source) have no boot-time unit
+        std::ofstream(fs::path(systemd_dir) / (s.name + ".service")) << systemd_unit(s, fs::absolute(bin_dir).string(), after, url);
+        std::printf("wrote %s/%s.service\n", systemd_dir.c_str(), s.name.c_str());
+        after = s.name;
+      }
+      return 0;
+    }
+
+    setenv("GPILOT_LCM_URL", url.c_str(), 1);
+    BusNode node("gpilot-launch", url);
+    std::map<std::string, health_t> health;
+    int8_t mode = -1;
+    node.subscribe<health_t>("HEALTH", [&](const health_t& h, int64_t) { health[h.name] = h; });
+    node.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t& g, int64_t) { mode = g.mode; });
+
+    std::vector<Child> children;
+    for (const auto& s : specs) {
+      bool wanted = true;
+      for (const auto& v : s.only_if) wanted = wanted && !vars[v].empty();
+      if (!wanted) continue;
+      Child c{s, find_binary(s.command[0], bin_dir)};
+      if (c.path.empty()) {
+        if (s.optional) {
+          std::fprintf(stderr, "gpilot-launch: %s: not built, skipped\n", s.name.c_str());
+          continue;
+        }
+        throw ServiceSetError(s.name + ": no executable '" + s.command[0] + "' in " + bin_dir + " or PATH");
+      }
+      c.pid = spawn(c);
+      std::fprintf(stderr, "gpilot-launch: started %s (pid %d):", s.name.c_str(), c.pid);
+      for (const auto& w : s.command) std::fprintf(stderr, " %s", w.c_str());
+      std::fprintf(stderr, "\n");
+      children.push_back(std::move(c));
+    }
+    node.set_state(health_t::STATE_OK, "running " + std::to_string(children.size()) + " processes");
+
+    const int64_t start = monotonic_utime();
+    int exit_code = 0;
+    int engage_sent = 0;
+    node.every(0.05, [&] {
+      const int64_t now = monotonic_utime();
+      for (auto& c : children) {
+        int status = 0;
+        if (c.pid > 0 && waitpid(c.pid, &status, WNOHANG) == c.pid) {
+          c.pid = -1;
+          const std::string how = WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
+                                                    : std::string("killed by signal ") + strsignal(WTERMSIG(status));
+          if (c.spec.ends_run) {
+            std::fprintf(stderr, "gpilot-launch: %s %s: run complete\n", c.spec.name.c_str(), how.c_str());
+            exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+            node.stop();
+            return;
+          }
+          if (c.spec.respawn) {
+            c.restart_at = now + kMicrosPerSecond / 2;
+            std::fprintf(stderr, "gpilot-launch: %s %s: restarting\n", c.spec.name.c_str(), how.c_str());
+          } else {
+            std::fprintf(stderr, "gpilot-launch: %s %s (not restarted)\n", c.spec.name.c_str(), how.c_str());
+          }
+          node.set_state(health_t::STATE_DEGRADED, c.spec.name + " " + how);
+        }
+        if (c.pid < 0 && c.restart_at > 0 && now >= c.restart_at) {
+          c.restart_at = 0;
+          c.pid = spawn(c);
+          ++c.restarts;
+          node.set_state(health_t::STATE_OK, "restarted " + c.spec.name + " (" + std::to_string(c.restarts) + "x)");
+        }
+      }
+      if (duration_s > 0 && now - start > seconds_to_utime(duration_s)) node.stop();
+    });
+    node.every(0.5, [&] {
+      if (!engage || engage_sent >= 3 || !health.count("gpilot-flight")) return;
+      flight_control_t fc{};
+      fc.utime = wall_utime();
+      fc.seq = engage_sent++;
+      fc.command = flight_control_t::COMMAND_ENGAGE;
+      fc.source = "gpilot-launch";
+      node.publish("FLIGHT_CONTROL", fc);
+      if (engage_sent == 1) std::fprintf(stderr, "gpilot-launch: engaged\n");
+    });
+    node.every(1.0, [&] {
+      const double t = (monotonic_utime() - start) * 1e-6;
+      long long frames = health.count("gpilot-capture") ? health["gpilot-capture"].messages_out : 0;
+      std::fprintf(stderr, "[%6.1f s] frames %lld | mode %s |", t, frames, mode >= 0 && mode <= 5 ? kModeNames[mode] : "-");
+      for (const auto& c : children) {
+        const auto it = health.find(c.spec.name);
+        std::string shortname = c.spec.name.rfind("gpilot-", 0) == 0 ? c.spec.name.substr(7) : c.spec.name;
+        if (c.pid < 0)
+          std::fprintf(stderr, " %s DOWN", shortname.c_str());
+        else if (it != health.end())
+          std::fprintf(stderr, " %s %.0f/s", shortname.c_str(), it->second.rate_out_hz);
+      }
+      std::fprintf(stderr, "\n");
+    });
+    node.run();
+    std::fprintf(stderr, "gpilot-launch: stopping %zu processes\n", children.size());
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stop_child(*it);
+    return exit_code;
+  });
+}

@@ -1,0 +1,41 @@
+// The set of gpilot processes, declared once in deploy/services.yaml (in the manner of procman): command,
+// respawn, stop signal, stop time, start order. The same list drives ./deploy/run (gpilot-launch), the
+// end-to-end tests and the systemd units for a companion computer.
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gpilot {
+
+struct ServiceSpec {
+  std::string name;                  //!< process name, also the HEALTH name it publishes
+  std::vector<std::string> command;  //!< argv; a bare argv[0] is looked up in the build's bin/ first
+  bool respawn = true;               //!< restart when it dies
+  int stop_signal = 15;              //!< SIGTERM unless the file says INT
+  double stop_timeout_s = 3.0;       //!< then SIGKILL
+  bool ends_run = false;             //!< its exit (status 0) ends the whole run
+  bool optional = false;             //!< skip with a message when its binary is missing
+  std::vector<std::string> only_if;  //!< started only when each named variable is non-empty
+};
+
+class ServiceSetError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Parses services.yaml text; ${var} in commands is replaced from vars (an unknown var is an error).
+// A command word that becomes empty after substitution is dropped (optional flags).
+std::vector<ServiceSpec> parse_service_set(const std::string& yaml_text, const std::map<std::string, std::string>& vars);
+
+// "${a} x ${b}" with vars; throws ServiceSetError naming an unknown variable.
+std::string substitute(const std::string& text, const std::map<std::string, std::string>& vars);
+
+// A systemd unit for one service: ExecStart from bin_dir, Restart from respawn, KillSignal, TimeoutStopSec,
+// ordered After= the service before it.
+std::string systemd_unit(const ServiceSpec& spec, const std::string& bin_dir, const std::string& after,
+                         const std::string& lcm_url);
+
+}  // namespace gpilot
