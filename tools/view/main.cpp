@@ -38,7 +38,7 @@ struct ViewOptions {
   std::string video;
   std::vector<std::string> png_every;  // N DIR
   double fps = 0;
-  int hold = 3;
+  int hold = 12;  // about half a second at 25 fps: longer than the pipeline takes for a frame
   double speed = -1;  // log playback speed in a window; <= 0: as fast as it draws
   OverlayOptions overlay;
 };
@@ -224,6 +224,8 @@ class Viewer {
 void report(const Viewer& v) {
   std::fprintf(stderr, "%s: %s\n", kName, v.status().c_str());
   if (const VideoSink* s = v.sink()) {
+    if (s->frames_written() == 0 && s->pngs_written() == 0)
+      std::fprintf(stderr, "%s: no frame was drawn: nothing written\n", kName);
     if (s->frames_written() > 0)
       std::fprintf(stderr, "%s: MP4: %lld frames at %.2f fps (%s)\n", kName, static_cast<long long>(s->frames_written()),
                    s->fps(), s->fourcc().c_str());
@@ -300,7 +302,7 @@ int main(int argc, char** argv) {
       ->expected(2)
       ->type_name("N DIR");
   app.add_option("--fps", o.fps, "MP4 frame rate (default: from the frames' utimes)")->check(CLI::Range(0.0, 240.0));
-  app.add_option("--hold", o.hold, "frames to wait for a frame's messages before drawing it anyway (default 3)")
+  app.add_option("--hold", o.hold, "newer frames to wait for a frame's messages before drawing it anyway (default 12)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--speed", o.speed, "log playback speed in a window (default 1; 0: as fast as it draws)");
   app.add_flag("--truth", o.overlay.truth, "draw GROUND_TRUTH in green (true box, hands, expected mode)");

@@ -9,17 +9,15 @@
 
 namespace gpilot {
 namespace {
-constexpr size_t kFramesForRate = 10;
+constexpr size_t kFramesForRate = 50;  // 2 s at 25 fps
 constexpr double kDefaultFps = 25.0;  // the paper's camera rate, when the frames do not tell
 }  // namespace
 
 double rate_from_utimes(const std::vector<int64_t>& utimes, double fallback) {
-  std::vector<int64_t> d;
-  for (size_t i = 1; i < utimes.size(); ++i)
-    if (utimes[i] > utimes[i - 1]) d.push_back(utimes[i] - utimes[i - 1]);
-  if (d.empty()) return fallback;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  const double hz = 1e6 / static_cast<double>(d[d.size() / 2]);
+  // The mean rate over the window: a source that stalls and then catches up in a burst (a paced loop
+  // behind schedule) has short intervals that a median would take for its rate.
+  if (utimes.size() < 2 || utimes.back() <= utimes.front()) return fallback;
+  const double hz = 1e6 * static_cast<double>(utimes.size() - 1) / static_cast<double>(utimes.back() - utimes.front());
   return std::clamp(hz, 1.0, 240.0);
 }
 

@@ -79,12 +79,12 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   // GIVEN the window showing frames
   test::SyntheticRun run;
   run.size = cv::Size(320, 240);
-  for (int s = 0; s < 8; ++s) {
+  for (int s = 0; s < 20; ++s) {  // more than the viewer's hold (12), so frames are drawn
     const image_t img = test::camera_of(run, s);
     lc.publish("CAMERA", &img);
     lc.handleTimeout(30);
   }
-  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return heard.view_detail.find("received 8 frames, drew") != std::string::npos; }))
+  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return heard.view_detail.find("received 20 frames, drew 1") != std::string::npos; }))
       << heard.view_detail;
   const std::string xdo = "DISPLAY=" + display + " /usr/bin/xdotool ";
   const std::string win = "$(" + xdo + "search --sync --onlyvisible --name '^gpilot-view$' | head -1)";
