@@ -9,7 +9,8 @@
 
 namespace gpilot {
 namespace {
-constexpr size_t kFramesForRate = 50;  // 2 s at 25 fps
+constexpr size_t kFramesForRate = 60;     // 2.4 s at 25 fps
+constexpr size_t kStartupFramesSkipped = 10;  // a source's first frames are often late (loading, warm-up)
 constexpr double kDefaultFps = 25.0;  // the paper's camera rate, when the frames do not tell
 }  // namespace
 
@@ -77,7 +78,8 @@ void VideoSink::write(const cv::Mat& annotated, int64_t seq, int64_t utime) {
 void VideoSink::start_writer() {
   if (fps_ <= 0) {
     std::vector<int64_t> t;
-    for (const auto& w : waiting_) t.push_back(w.second);
+    const size_t skip = waiting_.size() > 2 * kStartupFramesSkipped ? kStartupFramesSkipped : 0;
+    for (size_t i = skip; i < waiting_.size(); ++i) t.push_back(waiting_[i].second);
     fps_ = rate_from_utimes(t, kDefaultFps);
   }
   const auto frames = std::move(waiting_);  // a failed open drops them: it is not retried at close
