@@ -47,26 +47,35 @@ class CaptureService : public ::testing::Test {
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
+
+  // An MJPG video of n frames at fps, frame i a flat grey of brightness i * step; returns its path.
+  std::string write_clip(const std::string& name, int n, double fps, cv::Size size, int step) {
+    const std::string path = (dir_ / name).string();
+    cv::VideoWriter w(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps, size);
+    EXPECT_TRUE(w.isOpened());
+    for (int i = 0; i < n; ++i) w.write(cv::Mat(size, CV_8UC3, cv::Scalar::all(i * step)));
+    return path;
+  }
+
+  static CaptureOptions video(const std::string& path) {
+    CaptureOptions o;
+    o.kind = CaptureOptions::Kind::Video;
+    o.source = path;
+    o.as_fast_as_possible = true;
+    return o;
+  }
+
   fs::path dir_;
 };
 
 TEST_F(CaptureService, VideoFileReadsBackEveryFrame) {
   // GIVEN a 60-frame 320x240 video at 20 fps, frame i showing i in its brightness
-  const std::string path = (dir_ / "clip.avi").string();
-  {
-    cv::VideoWriter w(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 20.0, cv::Size(320, 240));
-    ASSERT_TRUE(w.isOpened());
-    for (int i = 0; i < 60; ++i) w.write(cv::Mat(240, 320, CV_8UC3, cv::Scalar::all(i * 4)));
-  }
+  const std::string path = write_clip("clip.avi", 60, 20.0, {320, 240}, 4);
   BusNode node("test", "memq://");
   Received r;
   listen(node, r);
-  CaptureOptions o;
-  o.kind = CaptureOptions::Kind::Video;
-  o.source = path;
-  o.as_fast_as_possible = true;
   // WHEN it is captured
-  EXPECT_EQ(run_capture(Config{}, o, node), 0);
+  EXPECT_EQ(run_capture(Config{}, video(path), node), 0);
   drain(node);
   // THEN 60 frames of the right size, seq 0..59, utime = file time (i / 20 fps), content in order
   ASSERT_EQ(r.frames.size(), 60u);
@@ -87,14 +96,28 @@ TEST_F(CaptureService, VideoFileReadsBackEveryFrame) {
   EXPECT_NE(r.health.back().state_detail.find("end of video file"), std::string::npos) << r.health.back().state_detail;
 }
 
+TEST_F(CaptureService, LoopedVideoKeepsCountingUntilTheDuration) {
+  CaptureOptions o = video(write_clip("short.avi", 10, 10.0, {64, 48}, 20));
+  BusNode node("test", "memq://");
+  Received r;
+  listen(node, r);
+  o.loop = true;
+  o.duration_s = 2.5;  // 25 frames at 10 fps: two and a half passes
+  EXPECT_EQ(run_capture(Config{}, o, node), 0);
+  drain(node);
+  ASSERT_EQ(r.frames.size(), 25u);
+  EXPECT_EQ(r.frames.back().seq, 24);
+  EXPECT_EQ(r.frames.back().utime, 2400000);  // file time keeps counting across the loop
+  cv::Mat f;
+  ASSERT_EQ(image_to_mat(r.frames[12], f), "");  // frame 2 of the second pass
+  EXPECT_NEAR(cv::mean(f)[0], 40.0, 4.0);
+}
+
 TEST_F(CaptureService, MissingVideoIsAClearErrorInHealth) {
   BusNode node("test", "memq://");
   Received r;
   listen(node, r);
-  CaptureOptions o;
-  o.kind = CaptureOptions::Kind::Video;
-  o.source = (dir_ / "nope.mp4").string();
-  EXPECT_EQ(run_capture(Config{}, o, node), 1);
+  EXPECT_EQ(run_capture(Config{}, video((dir_ / "nope.mp4").string()), node), 1);
   drain(node);
   EXPECT_TRUE(r.frames.empty());
   ASSERT_FALSE(r.health.empty());
@@ -160,6 +183,26 @@ TEST_F(CaptureService, SyntheticPublishesTruthWithItsFrameAndFliesWithTheVehicle
   EXPECT_FLOAT_EQ(r.truths.back().camera_position[0], 1.0f);
   EXPECT_FLOAT_EQ(r.truths.back().camera_yaw, 0.05f);
   EXPECT_GT(r.truths.back().face_box[2], 1.4f * r.truths[0].face_box[2]);  // 3 m -> 2 m: 1.5x larger
+}
+
+TEST_F(CaptureService, JpegByConfig) {
+  BusNode node("test", "memq://");
+  Received r;
+  listen(node, r);
+  Config c;
+  c.set("capture.pixel_format=JPEG");
+  c.set("capture.jpeg_quality=80");
+  CaptureOptions o;
+  o.as_fast_as_possible = true;
+  o.duration_s = 0.08;  // 2 frames
+  EXPECT_EQ(run_capture(c, o, node), 0);
+  drain(node);
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].pixel_format, image_t::PIXEL_FORMAT_JPEG);
+  EXPECT_LT(r.frames[0].size, 640 * 480);  // compressed
+  cv::Mat f;
+  ASSERT_EQ(image_to_mat(r.frames[0], f), "");
+  EXPECT_EQ(f.size(), cv::Size(640, 480));
 }
 
 TEST_F(CaptureService, BadPixelFormatIsAConfigError) {
