@@ -146,6 +146,11 @@ class FlightService {
 
  private:
   void control(const flight_control_t& m) {
+    // gpilot-ctl repeats each request against multicast loss: act on it once.
+    if (m.utime == last_control_utime_ && m.seq == last_control_seq_ && m.source == last_control_source_) return;
+    last_control_utime_ = m.utime;
+    last_control_seq_ = m.seq;
+    last_control_source_ = m.source;
     switch (m.command) {
       case flight_control_t::COMMAND_ENGAGE:
         in_.engaged = true;
@@ -228,6 +233,9 @@ class FlightService {
   std::unique_ptr<mavlink::UdpLink> link_;
   std::optional<mavlink::MavlinkSession> session_;
   int setpoints_since_engage_ = 0;
+  int64_t last_control_utime_ = -1;
+  int64_t last_control_seq_ = -1;
+  std::string last_control_source_;
 };
 
 }  // namespace

@@ -173,6 +173,8 @@ SkinClassifier::SkinClassifier(const SkinModel& model, double threshold) {
   mask_table_.resize(model.table().size());
   for (size_t i = 0; i < mask_table_.size(); ++i) mask_table_[i] = model.table()[i] > t ? 1 : 0;
   fill_index(model.bins(), qb_, qg_, qr_);
+  bits_ = log2_exact(model.bins());
+  shift_ = 8 - bits_;
 }
 
 void SkinClassifier::classify(const cv::Mat& bgr, cv::Mat& mask) const {
@@ -181,7 +183,11 @@ void SkinClassifier::classify(const cv::Mat& bgr, cv::Mat& mask) const {
   for (int y = 0; y < bgr.rows; ++y) {
     const uint8_t* p = bgr.ptr<uint8_t>(y);
     uint8_t* o = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < bgr.cols; ++x, p += 3) o[x] = mask_table_[static_cast<size_t>(qb_[p[0]] + qg_[p[1]] + qr_[p[2]])];
+    // Shifts rather than the three index tables of is_skin(): the same index, fewer loads in the hot loop.
+    const uint8_t* table = mask_table_.data();
+    const int s = shift_, b1 = bits_, b2 = 2 * bits_;
+    for (int x = 0; x < bgr.cols; ++x, p += 3)
+      o[x] = table[(static_cast<unsigned>(p[0] >> s) << b2) | (static_cast<unsigned>(p[1] >> s) << b1) | (p[2] >> s)];
   }
 }
 

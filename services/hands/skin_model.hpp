@@ -98,6 +98,7 @@ class SkinClassifier {
  private:
   std::vector<uint8_t> mask_table_;
   std::array<int32_t, 256> qb_{}, qg_{}, qr_{};
+  int shift_ = 0, bits_ = 0;  // index = (b >> shift) << 2 bits | (g >> shift) << bits | r >> shift
 };
 
 }  // namespace gpilot
