@@ -1,6 +1,7 @@
 // The tracker on the synthetic world's `tour` (every gesture of the paper in turn, 60 s at 25 fps, arms
 // stretched out of the body box and back): found by the face search on the first frames, then the box stays
 // on the person throughout, never LOST.
+#include <cstdio>
 #include <optional>
 
 #include <gtest/gtest.h>
@@ -40,6 +41,7 @@ TEST(TrackerTour, BoxStaysOnThePersonThroughout) {
       worst_frame = i;
     }
   }
+  std::printf("tour: found at frame %d, worst IoU %.3f at frame %d of %d\n", found_at, worst_iou, worst_frame, frames);
   EXPECT_GE(found_at, 0);
   EXPECT_LE(found_at, 2) << "the face search should find the user at once";
   EXPECT_EQ(tracker.last().init, InitSource::kFace);
