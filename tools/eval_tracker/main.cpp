@@ -81,7 +81,7 @@ class UserTrackerRunner : public Runner {
 
 class DsstRunner : public Runner {
  public:
-  explicit DsstRunner(const DsstParams& p) : Runner("gpilot DSST (paper)"), d_(p) {}
+  explicit DsstRunner(const DsstParams& p) : Runner("gpilot DSST alone"), d_(p) {}
   void init(const cv::Mat& frame, const cv::Rect2d& box) override { d_.init(frame, box); }
   std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
     const DsstEstimate e = d_.update(frame);
@@ -287,16 +287,16 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
               src->name().c_str(), frames, truth_frames, init_how.c_str(), init_frame, threads);
   std::printf("%-26s %8s %9s %9s %6s %9s %9s\n", "tracker", "AUC", "prec@20", "mean IoU", "lost", "fps", "ms/frame");
   for (const auto& r : results)
-    std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
+    std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f   final box %.0f,%.0f %.0fx%.0f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
                 num(r.has_truth ? r.scores.precision_20px : NAN, 3).c_str(), num(r.has_truth ? r.scores.mean_iou : NAN, 3).c_str(),
-                r.lost, r.fps, r.ms);
+                r.lost, r.fps, r.ms, r.final_box.x, r.final_box.y, r.final_box.width, r.final_box.height);
   std::printf("\nours: PSR min %.2f, mean %.2f; final box %.1f %.1f %.1f %.1f\n", ours.psr_min, ours.psr_mean,
               ours.final_box.x, ours.final_box.y, ours.final_box.width, ours.final_box.height);
   if (results.size() > 2 && ours.has_truth) {
     std::printf("\n%s against the anchors:\n", ours.name.c_str());
     for (size_t i = 2; i < results.size(); ++i) {
       const Result& a = results[i];
-      std::printf("  %-26s AUC %s (%+.3f), %.1fx its speed\n", a.name.c_str(),
+      std::printf("  %-26s AUC %s (%+.3f), %.2fx its speed\n", a.name.c_str(),
                   ours.scores.success_auc >= a.scores.success_auc ? "better" : "WORSE",
                   ours.scores.success_auc - a.scores.success_auc, a.ms > 0 ? a.ms / ours.ms : 0.0);
     }
