@@ -11,22 +11,14 @@
 #include "dsst.hpp"
 #include "fhog.hpp"
 #include "face_detector.hpp"
+// The textured scene of the DSST known-answer tests.
+#include "../../tests/unit/tracker/known_scene.hpp"
 
 namespace {
 
-cv::Mat bench_texture(cv::Size size) {
-  cv::RNG rng(11);
-  cv::Mat noise(size, CV_8UC3);
-  rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
-  cv::Mat out;
-  cv::GaussianBlur(noise, out, cv::Size(0, 0), 2.5);
-  cv::normalize(out, out, 0, 255, cv::NORM_MINMAX);
-  return out;
-}
-
 void BM_FhogWindow(benchmark::State& state) {
   cv::setNumThreads(1);
-  const cv::Mat patch = bench_texture(cv::Size(100, 100));
+  const cv::Mat patch = gpilot::test::texture(cv::Size(100, 100), 11);
   gpilot::Fhog f;
   std::vector<cv::Mat> out;
   for (auto _ : state) {
@@ -40,14 +32,11 @@ BENCHMARK(BM_FhogWindow);
 void BM_DsstFrame640x480(benchmark::State& state) {
   cv::setNumThreads(1);
   const int w = static_cast<int>(state.range(0)), h = static_cast<int>(state.range(1));
-  const cv::Mat tex = bench_texture(cv::Size(900, 700));
+  const cv::Mat tex = gpilot::test::texture(cv::Size(900, 700), 11);
   std::vector<cv::Mat> frames;
-  for (int i = 0; i < 16; ++i) {
-    const cv::Matx23d m(1, 0, -100 - 1.3 * std::sin(0.4 * i), 0, 1, -100 - 0.9 * std::cos(0.3 * i));
-    cv::Mat f;
-    cv::warpAffine(tex, f, m, cv::Size(640, 480));
-    frames.push_back(f);
-  }
+  for (int i = 0; i < 16; ++i)
+    frames.push_back(gpilot::test::view(tex, cv::Point2d(450, 350), cv::Point2d(320 + 1.3 * std::sin(0.4 * i), 240 + 0.9 * std::cos(0.3 * i)),
+                                1.0, cv::Size(640, 480)));
   gpilot::Dsst dsst{gpilot::DsstParams{}};
   dsst.init(frames[0], cv::Rect2d(320 - w / 2.0, 240 - h / 2.0, w, h));
   size_t i = 1;
@@ -63,7 +52,7 @@ void BM_FaceSearch640x480(benchmark::State& state) {
   gpilot::TrackerParams p;
   p.face.downscale = static_cast<double>(state.range(0));
   gpilot::FaceDetector faces(p);
-  const cv::Mat frame = bench_texture(cv::Size(640, 480));
+  const cv::Mat frame = gpilot::test::texture(cv::Size(640, 480), 11);
   for (auto _ : state) benchmark::DoNotOptimize(faces.detect(frame));
 }
 BENCHMARK(BM_FaceSearch640x480)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
