@@ -8,15 +8,11 @@
 
 #include "capture/synthetic_params.hpp"
 #include "capture/synthetic_world.hpp"
+#include "metrics.hpp"
 #include "user_tracker.hpp"
 
 namespace gpilot {
 namespace {
-
-double iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double inter = (a & b).area();
-  return inter / (a.area() + b.area() - inter);
-}
 
 TEST(TrackerTour, BoxStaysOnThePersonThroughout) {
   const SyntheticParams sp;
