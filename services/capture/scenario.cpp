@@ -190,7 +190,8 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
   if (root["description"]) s.description_ = r.text(root["description"], "description");
   if (root["background"]) s.background_ = r.text(root["background"], "background");
   if (const YAML::Node g = root["background_grade"]) {
-    r.only(g, "background_grade", {"saturation", "red_gain", "blue_gain"});
+    r.only(g, "background_grade", {"saturation", "red_gain", "blue_gain", "blur_sigma"});
+    r.opt(g, "blur_sigma", "background_grade", s.grade_.blur_sigma, 0.0, 20.0);
     r.opt(g, "saturation", "background_grade", s.grade_.saturation, 0.0, 2.0);
     r.opt(g, "red_gain", "background_grade", s.grade_.red_gain, 0.0, 4.0);
     r.opt(g, "blue_gain", "background_grade", s.grade_.blue_gain, 0.0, 4.0);
@@ -217,6 +218,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     r.opt(p, "east", "person", s.person_.east, -1e4, 1e4);
     if (const YAML::Node f = p["facing_yaw_deg"]) {
       s.person_.facing_yaw = r.number(f, "person.facing_yaw_deg", -360, 360) * kDeg;
+      s.person_.faces_camera = false;
       facing_given = true;
     }
     if (p["skin_tone"]) s.person_.skin_tone = r.text(p["skin_tone"], "person.skin_tone");
@@ -270,6 +272,10 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     kf.state = state;
     s.keyframes_.push_back(kf);
   }
+  // Each keyframe starts from wherever the previous one had got to when it began (no jump if interrupted).
+  s.starts_.assign(s.keyframes_.size(), s.keyframes_.front().state);
+  for (size_t k = 2; k < s.keyframes_.size(); ++k)
+    s.starts_[k] = mix(s.starts_[k - 1], s.keyframes_[k - 1].state, progress(s.keyframes_[k - 1], s.keyframes_[k].t_s));
   const Keyframe& last = s.keyframes_.back();
   s.duration_s_ = last.t_s + last.transition_s + 2.0;
   r.opt(root, "duration_s", "", s.duration_s_, 0.04, 1e6);
@@ -277,15 +283,10 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
 }
 
 ScenarioState Scenario::state_at(double t_s) const {
-  // Each keyframe starts from wherever the previous one had got to when it began.
-  ScenarioState from = keyframes_.front().state;
-  for (size_t k = 1; k < keyframes_.size(); ++k) {
-    if (t_s < keyframes_[k].t_s) return mix(from, keyframes_[k - 1].state, k == 1 ? 1.0 : progress(keyframes_[k - 1], t_s));
-    const ScenarioState reached = k == 1 ? from : mix(from, keyframes_[k - 1].state, progress(keyframes_[k - 1], keyframes_[k].t_s));
-    from = reached;
-  }
-  const size_t n = keyframes_.size();
-  return n == 1 ? from : mix(from, keyframes_.back().state, progress(keyframes_.back(), t_s));
+  // The last keyframe that has begun moves from starts_[k] (where the script was when it began) to its state.
+  size_t k = 0;
+  while (k + 1 < keyframes_.size() && t_s >= keyframes_[k + 1].t_s) ++k;
+  return k == 0 ? keyframes_.front().state : mix(starts_[k], keyframes_[k].state, progress(keyframes_[k], t_s));
 }
 
 std::vector<double> Scenario::key_times() const {

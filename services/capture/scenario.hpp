@@ -7,11 +7,11 @@
 //   description: every gesture of the paper in turn
 //   duration_s: 60                     # default: last keyframe + its transition + 2 s
 //   background: data/backgrounds/building.jpg
-//   background_grade: {saturation: 0.4, red_gain: 0.85, blue_gain: 1.15}   # the defaults: see below
+//   background_grade: {saturation: 0.4, red_gain: 0.85, blue_gain: 1.15, blur_sigma: 1.5}   # the defaults
 //   transition_s: 1.0                  # default length of the move into each keyframe
 //   camera: {north: 0, east: 0, down: -1.5, yaw_deg: 0}        # fixed pose when no VEHICLE_STATE
 //   person: {north: 3, east: 0, facing_yaw_deg: 180, skin_tone: light,
-//            shirt_bgr: [150, 80, 40], trousers_bgr: [60, 50, 45]}  # facing: default toward the camera
+//            shirt_bgr: [150, 80, 40], trousers_bgr: [60, 50, 45]}  # facing: default, turns to face the camera
 //   distractor: {left: 1.3, up: 1.5, behind: 2.0, radius: 0.12}   # skin-coloured ball, person frame, m
 //   keyframes:
 //     - {t: 0, gesture: REST, right_arm: rest, left_arm: rest}
@@ -73,7 +73,8 @@ struct ScenarioState {
 
 struct ScenarioPerson {
   double north = 3.0, east = 0.0;  //!< the point between the feet, on the ground (down = 0), NED metres
-  double facing_yaw = 0.0;         //!< rad, the direction the person faces
+  double facing_yaw = 0.0;         //!< rad, the direction the person faces (toward the scenario's camera by default)
+  bool faces_camera = true;        //!< turns to keep facing the camera as it moves (false when facing_yaw_deg is given)
   std::string skin_tone = "light";
   std::array<int, 3> shirt_bgr{{150, 82, 40}};
   std::array<int, 3> trousers_bgr{{70, 55, 45}};
@@ -86,9 +87,11 @@ struct ScenarioDistractor {
 // Colour grading of the background photograph: saturation (1 = as shot, 0 = grey) then per-channel gains. The
 // default, a muted and cool look (overcast light), keeps the photographs' warm beige walls from reading as
 // skin to a histogram skin model trained on UCI pixels (with the photos as shot, 2-8 % of building.jpg and
-// 28 % of home.jpg are "skin"); {1, 1, 1} shows them as shot, a nuisance of its own.
+// 28 % of home.jpg are "skin"); {1, 1, 1} shows them as shot, a nuisance of its own. blur_sigma (pixels of
+// the frame at the reference pose) puts the far backdrop a little out of focus, so that its strong window
+// grid does not outweigh the person in a tracker's features (0 = sharp).
 struct BackgroundGrade {
-  double saturation = 0.4, red_gain = 0.85, blue_gain = 1.15;
+  double saturation = 0.4, red_gain = 0.85, blue_gain = 1.15, blur_sigma = 1.5;
 };
 
 struct Keyframe {
@@ -129,6 +132,7 @@ class Scenario {
   ScenarioPerson person_;
   ScenarioDistractor distractor_;
   std::vector<Keyframe> keyframes_;
+  std::vector<ScenarioState> starts_;  // the state each keyframe's move starts from
 };
 
 // "REST" -> ground_truth_t::GESTURE_REST ...; -1 if unknown. And back.

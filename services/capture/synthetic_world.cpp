@@ -147,6 +147,8 @@ SyntheticWorld::SyntheticWorld(const SyntheticParams& params, Scenario scenario,
   const int pw = std::max(static_cast<int>(std::lround(photo.cols * double(ph) / photo.rows)), params_.width);
   cv::Mat scaled, mirrored;
   cv::resize(photo, scaled, cv::Size(pw, ph), 0, 0, cv::INTER_AREA);
+  if (scenario_.background_grade().blur_sigma > 0)
+    cv::GaussianBlur(scaled, scaled, cv::Size(), scenario_.background_grade().blur_sigma);
   cv::flip(scaled, mirrored, 1);
   cv::hconcat(std::vector<cv::Mat>{scaled, mirrored, scaled, mirrored}, panorama_);
   pano_period_ = 2.0 * pw;
@@ -294,6 +296,15 @@ void SyntheticWorld::draw_person(cv::Mat& img, cv::Mat* labels, const View& v, c
     for (double side : {-1.0, 1.0})
       limb(PartLabel::Torso, shirt, P(side * (d.shoulder_x - 0.01), d.shoulder_y + 0.005), P(side * d.shoulder_x * 0.6, d.torso_top - 0.03),
            d.upper_arm_half * 1.25, d.upper_arm_half * 1.2);
+    // Horizontal stripes that move with the shirt: texture on the person for a tracker to hold on to.
+    const cv::Scalar stripe = shirt * 0.55;
+    for (double y = d.hip_y + 0.03; y < d.torso_top - 0.04; y += 0.05) {
+      const double half = y > d.waist_y ? d.torso_half_waist + (d.torso_half_top - d.torso_half_waist) * (y - d.waist_y) / (d.torso_top - d.waist_y)
+                                        : d.torso_half_hip + (d.torso_half_waist - d.torso_half_hip) * (y - d.hip_y) / (d.waist_y - d.hip_y);
+      const cv::Point2d a = v.project(P(-half + 0.006, y)), b = v.project(P(half - 0.006, y));
+      const int thick = std::max(1, static_cast<int>(std::lround(v.px(0.015, P(0, y)))));
+      cv::line(img, fixed(a), fixed(b), stripe, thick, cv::LINE_AA, kShift);
+    }
     limb(PartLabel::Torso, kTurtleneck, P(0, d.face_top - d.face_box), P(0, d.torso_top), d.neck_half, d.neck_half * 1.15);
   }
   draw_head(img, labels, v, sx);
@@ -366,7 +377,10 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   v.f = focal_;
   v.cx = 0.5 * params_.width;
   v.cy = 0.5 * params_.height;
-  const double py = person.facing_yaw;
+  // The user watches the drone (the paper's assumption: the user faces the camera): they turn toward it.
+  const double py = person.faces_camera && std::hypot(cam.north - person.north, cam.east - person.east) > 1e-6
+                        ? std::atan2(cam.east - person.east, cam.north - person.north)
+                        : person.facing_yaw;
   v.left = {std::sin(py), -std::cos(py), 0.0};
   v.up = {0.0, 0.0, -1.0};
   v.front = {std::cos(py), std::sin(py), 0.0};
@@ -391,11 +405,18 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   }
 
   const FigurePose pose = pose_figure(dims_, s.right_arm, s.left_arm, s.step_m);
-  draw_person(out.bgr, labels, v, pose);
+  // A person behind the camera (the drone turned away or flew past) is not drawn, and has no boxes.
+  const bool in_front = v.depth({pose.step_x, dims_.waist_y, 0.0}) > 0.3;
+  if (in_front) draw_person(out.bgr, labels, v, pose);
   apply_nuisances(out.bgr, s, frame_index);
 
   // Ground truth.
   SyntheticTruth& t = out.truth;
+  const cv::Vec3d feet = v.world({pose.step_x, 0.0, 0.0});
+  t.person_position = cv::Point3f(float(feet[0]), float(feet[1]), float(feet[2]));
+  t.camera = cam;
+  t.gesture = s.gesture;
+  if (!in_front) return out;  // boxes and hands zero, expected NONE / HOVER
   const double half = 0.5 * dims_.face_box;
   const std::vector<cv::Point2d> face = {v.project({pose.step_x - half, dims_.face_top, 0.02}),
                                          v.project({pose.step_x + half, dims_.face_top, 0.02}),
@@ -412,14 +433,10 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), rules_);
   t.shoulder_centre = e.shoulder_centre;
   t.body_centre = e.body_centre;
-  t.gesture = s.gesture;
   t.expected_kind = e.kind;
   t.expected_vector = e.vector;
   t.expected_mode = e.mode;
   t.expected_direction = e.direction;
-  const cv::Vec3d feet = v.world({pose.step_x, 0.0, 0.0});
-  t.person_position = cv::Point3f(float(feet[0]), float(feet[1]), float(feet[2]));
-  t.camera = cam;
   return out;
 }
 

@@ -9,8 +9,9 @@
 //   SyntheticFrame g = world.render(t_s, frame_index, CameraPose{n, e, d, yaw});  // closed loop: the vehicle
 //   f.bgr: CV_8UC3 frame (params.width x params.height); f.truth: ground truth in image pixels.
 //
-// Geometry. World NED (metres); the person stands at scenario person.north/east on the ground (down = 0),
-// facing person.facing_yaw (default: toward the scenario camera). The camera is a pinhole at CameraPose with
+// Geometry. World NED (metres); the person stands at scenario person.north/east on the ground (down = 0)
+// and turns to face the camera wherever it is (the paper's assumption), unless the scenario fixes
+// person.facing_yaw_deg. The camera is a pinhole at CameraPose with
 // its optical axis level along yaw (0 = north, clockwise positive); fx = fy = (width/2) / tan(hfov/2), principal
 // point at the image centre. The person faces the camera, so their right hand appears on the image's LEFT.
 //
@@ -29,6 +30,8 @@
 //   the next keyframe's gesture half-way.
 // - expected_kind / expected_vector / expected_mode / expected_direction: the paper's Alg. 1/2/3 applied to the
 //   true hands and the true user box (gesture_truth.hpp lists the simplifications).
+// - a person behind the camera is not drawn; the boxes, points and hand_size are then 0 and the expected
+//   kind/mode NONE/HOVER.
 // - person_position: NED of the point between the feet (sideways step included); camera: the pose rendered
 //   from (the vehicle's, or the scenario's fixed one), without the shake nuisance.
 #pragma once

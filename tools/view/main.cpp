@@ -5,6 +5,7 @@
 // ('e' engage, 'd' disengage, 'l' land); HEALTH once a second when live.
 // Without a display (or with --headless) it writes an MP4 and/or PNGs; live headless runs until
 // SIGINT/SIGTERM and then closes the MP4 cleanly.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -38,7 +39,7 @@ struct ViewOptions {
   std::string video;
   std::vector<std::string> png_every;  // N DIR
   double fps = 0;
-  int hold = 3;
+  int hold = 0;  // 0: 12 frames live (about 0.5 s at 25 fps), 50 from a log (no hurry there)
   double speed = -1;  // log playback speed in a window; <= 0: as fast as it draws
   OverlayOptions overlay;
 };
@@ -54,7 +55,7 @@ class Viewer {
     }
     if (!o.video.empty() || png_n > 0) sink_ = std::make_unique<VideoSink>(o.video, o.fps, png_dir, png_n);
     if (window_) {
-      cv::namedWindow(kWindow, cv::WINDOW_AUTOSIZE);
+      cv::namedWindow(kWindow, cv::WINDOW_AUTOSIZE | cv::WINDOW_GUI_NORMAL);  // image pixels = window pixels
       cv::setMouseCallback(kWindow, &Viewer::on_mouse, this);
     }
   }
@@ -224,6 +225,8 @@ class Viewer {
 void report(const Viewer& v) {
   std::fprintf(stderr, "%s: %s\n", kName, v.status().c_str());
   if (const VideoSink* s = v.sink()) {
+    if (s->frames_written() == 0 && s->pngs_written() == 0)
+      std::fprintf(stderr, "%s: no frame was drawn: nothing written\n", kName);
     if (s->frames_written() > 0)
       std::fprintf(stderr, "%s: MP4: %lld frames at %.2f fps (%s)\n", kName, static_cast<long long>(s->frames_written()),
                    s->fps(), s->fourcc().c_str());
@@ -232,7 +235,21 @@ void report(const Viewer& v) {
   }
 }
 
-int run_log(const ViewOptions& o, bool window) {
+// The CAMERA rate over the whole log (a first pass; utimes only), so a video plays at the run's pace even
+// when its first frames came slowly.
+double log_camera_rate(const std::string& path) {
+  LogReader log(path);
+  LogDispatcher d;
+  std::vector<int64_t> utimes;
+  d.on<image_t>(channel::kCamera, [&](const image_t& m, int64_t) { utimes.push_back(m.utime); });
+  LogEvent ev;
+  while (log.next(ev)) d.dispatch(ev);
+  std::sort(utimes.begin(), utimes.end());
+  return rate_from_utimes(utimes, 0.0);
+}
+
+int run_log(ViewOptions o, bool window) {
+  if (!o.video.empty() && o.fps <= 0) o.fps = log_camera_rate(o.log);
   LogReader log(o.log);
   LogDispatcher dispatch;
   Viewer viewer(o, window);
@@ -300,8 +317,8 @@ int main(int argc, char** argv) {
       ->expected(2)
       ->type_name("N DIR");
   app.add_option("--fps", o.fps, "MP4 frame rate (default: from the frames' utimes)")->check(CLI::Range(0.0, 240.0));
-  app.add_option("--hold", o.hold, "frames to wait for a frame's messages before drawing it anyway (default 3)")
-      ->check(CLI::Range(1, 1000));
+  app.add_option("--hold", o.hold, "newer frames to wait for a frame's messages before drawing it anyway (default 12 live, 50 from a log)")
+      ->check(CLI::Range(0, 1000));
   app.add_option("--speed", o.speed, "log playback speed in a window (default 1; 0: as fast as it draws)");
   app.add_flag("--truth", o.overlay.truth, "draw GROUND_TRUTH in green (true box, hands, expected mode)");
   app.add_flag("--skin-overlay", o.overlay.skin, "show the skin counts of HAND_OBS (and a skin mask when available)");
@@ -324,6 +341,7 @@ int main(int argc, char** argv) {
     if (!window && o.video.empty() && o.png_every.empty())
       throw std::invalid_argument("nothing to do without a window: give --video OUT.mp4 and/or --png-every N DIR");
     if (o.speed < 0) o.speed = window ? 1.0 : 0.0;
+    if (o.hold <= 0) o.hold = o.log.empty() ? 12 : 50;
     if (!o.log.empty()) return run_log(o, window);
     return run_live(o, window, resolve_lcm_url(cli.lcm_url()));
   });

@@ -170,7 +170,7 @@ std::optional<CommandMark> command_mark(const FrameMessages& m) {
 
 int hud_height(const cv::Size& frame, const OverlayOptions& options) {
   if (!options.hud) return 0;
-  // Worst case for the flowed text: measured with every item present.
+  // Worst case for the flowed text (the strip keeps one height through a video): every item present.
   FrameMessages all;
   all.cmd = gesture_cmd_t{};
   all.track = user_track_t{};
@@ -182,9 +182,7 @@ int hud_height(const cv::Size& frame, const OverlayOptions& options) {
   hud.setpoint = flight_setpoint_t{};
   for (const char* n : {"gpilot-capture", "gpilot-tracker", "gpilot-hands", "gpilot-decide", "gpilot-flight"})
     hud.stage_hz[n] = 100.0f;
-  OverlayOptions o = options;
-  o.truth = true;
-  o.skin = true;
+  const OverlayOptions& o = options;
   const double scale = font_scale(frame);
   int base = 0;
   const int line_h = static_cast<int>(cv::getTextSize("Ag", kFont, scale, 1, &base).height * 1.8) + 2;

@@ -9,17 +9,16 @@
 
 namespace gpilot {
 namespace {
-constexpr size_t kFramesForRate = 10;
+constexpr size_t kFramesForRate = 60;     // 2.4 s at 25 fps
+constexpr size_t kStartupFramesSkipped = 10;  // a source's first frames are often late (loading, warm-up)
 constexpr double kDefaultFps = 25.0;  // the paper's camera rate, when the frames do not tell
 }  // namespace
 
 double rate_from_utimes(const std::vector<int64_t>& utimes, double fallback) {
-  std::vector<int64_t> d;
-  for (size_t i = 1; i < utimes.size(); ++i)
-    if (utimes[i] > utimes[i - 1]) d.push_back(utimes[i] - utimes[i - 1]);
-  if (d.empty()) return fallback;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  const double hz = 1e6 / static_cast<double>(d[d.size() / 2]);
+  // The mean rate over the window: a source that stalls and then catches up in a burst (a paced loop
+  // behind schedule) has short intervals that a median would take for its rate.
+  if (utimes.size() < 2 || utimes.back() <= utimes.front()) return fallback;
+  const double hz = 1e6 * static_cast<double>(utimes.size() - 1) / static_cast<double>(utimes.back() - utimes.front());
   return std::clamp(hz, 1.0, 240.0);
 }
 
@@ -79,12 +78,14 @@ void VideoSink::write(const cv::Mat& annotated, int64_t seq, int64_t utime) {
 void VideoSink::start_writer() {
   if (fps_ <= 0) {
     std::vector<int64_t> t;
-    for (const auto& w : waiting_) t.push_back(w.second);
+    const size_t skip = waiting_.size() > 2 * kStartupFramesSkipped ? kStartupFramesSkipped : 0;
+    for (size_t i = skip; i < waiting_.size(); ++i) t.push_back(waiting_[i].second);
     fps_ = rate_from_utimes(t, kDefaultFps);
   }
-  open(waiting_.front().first.size());
-  for (const auto& w : waiting_) encode(w.first);
+  const auto frames = std::move(waiting_);  // a failed open drops them: it is not retried at close
   waiting_.clear();
+  open(frames.front().first.size());
+  for (const auto& w : frames) encode(w.first);
 }
 
 void VideoSink::close() {

@@ -2,8 +2,8 @@
 // GStreamer is unusable on this stack, see STACK.md §5) and/or every N-th frame as a PNG.
 //
 // The MP4 is opened at the first frame with that frame's size; later frames of another size are scaled
-// to it. Without a given rate, the rate is the median frame interval of the first frames' utimes (frames
-// are buffered until then). close() must run for the MP4 to be playable (it writes the index).
+// to it. Without a given rate, the rate is the mean rate of frames 10..59's utimes (frames are
+// buffered until then; the very first frames of a source are often late). close() must run for the MP4 to be playable (it writes the index).
 #pragma once
 
 #include <cstdint>
@@ -50,7 +50,7 @@ class VideoSink {
   bool closed_ = false;
 };
 
-// The median interval of increasing utimes as a rate in Hz, or fallback when it cannot be told.
+// The mean rate of increasing utimes in Hz (first to last), or fallback when it cannot be told.
 double rate_from_utimes(const std::vector<int64_t>& utimes, double fallback);
 
 }  // namespace gpilot

@@ -84,11 +84,11 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
     const std::string bin = std::string(GPILOT_BIN_DIR) + "/gpilot-launch";
     std::vector<std::string> args = {bin, "--services", std::string(GPILOT_SOURCE_DIR) + "/deploy/services.yaml",
                                      "--engage", "--duration", std::to_string(duration_s),
-                                     "--var", "config=" + std::string(GPILOT_SOURCE_DIR) + "/deploy/config/default.yaml",
+                                     "--var", "config=" + std::string(GPILOT_SOURCE_DIR) + "/deploy/config/synthetic.yaml",
                                      "--var", "source_flag=--synthetic",
                                      "--var", "source=" + std::string(GPILOT_SOURCE_DIR) + "/deploy/scenarios/" + scenario + ".yaml",
                                      "--var", "capture_extra=", "--var", "backend=sim",
-                                     "--var", "mavlink=udp:127.0.0.1:14540", "--var", "log=" + log,
+                                     "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=" + log,
                                      "--var", "video_out=" + dir + "/annotated.mp4"};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());

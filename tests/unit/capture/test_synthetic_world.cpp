@@ -133,6 +133,34 @@ TEST(SyntheticWorld, ClosedLoopCloserIsLargerAndYawMovesThePersonAcross) {
   EXPECT_GT(higher.face_box.y, far.face_box.y + 50);
 }
 
+TEST(SyntheticWorld, ThePersonTurnsToFaceTheDroneUnlessTheirFacingIsFixed) {
+  // GIVEN the drone 3 m from the person but 60 deg round to their side, looking at them
+  const double a = 60.0 * M_PI / 180.0;
+  const CameraPose side{3.0 - 3.0 * std::cos(a), -3.0 * std::sin(a), -1.5, a};
+  const SyntheticTruth turning = tour_world().render(1.0, 0, side).truth;
+  const SyntheticWorld fixed(SyntheticParams{}, Scenario::parse("person: {facing_yaw_deg: 180}\nkeyframes: [{t: 0}]\n", "x"), 1);
+  const SyntheticTruth still = fixed.render(1.0, 0, side).truth;
+  // THEN a person who turns shows the full face width; one who does not is seen foreshortened (cos 60 deg)
+  EXPECT_NEAR(turning.face_box.width, 554.256 * 0.17 / 3.0, 1.0);
+  EXPECT_NEAR(still.face_box.width, 554.256 * 0.17 / 3.0 * 0.5, 2.0);
+  EXPECT_NEAR(turning.face_box.x + turning.face_box.width / 2, 320.0, 1.0);  // still centred: the drone looks at them
+}
+
+TEST(SyntheticWorld, APersonBehindTheCameraIsNotDrawn) {
+  const SyntheticWorld& w = tour_world();
+  // GIVEN the drone turned away from the person (yaw 180 deg), and one that flew past them
+  for (const CameraPose cam : {CameraPose{0.0, 0.0, -1.5, M_PI}, CameraPose{5.0, 0.0, -1.5, 0.0}}) {
+    cv::Mat labels;
+    const SyntheticFrame f = w.render(tour_time_of(ground_truth_t::GESTURE_OUT), 0, cam, &labels);
+    // THEN no person pixel, empty boxes, no gesture observed
+    EXPECT_EQ(cv::countNonZero(labels), 0);
+    EXPECT_EQ(f.truth.user_box.area(), 0.0f);
+    EXPECT_EQ(f.truth.expected_kind, hand_obs_t::KIND_NONE);
+    EXPECT_EQ(f.truth.expected_mode, gesture_cmd_t::MODE_HOVER);
+    EXPECT_EQ(f.truth.gesture, ground_truth_t::GESTURE_OUT);
+  }
+}
+
 TEST(SyntheticWorld, ExpectedCommandsOfTheTourAreItsGestures) {
   const SyntheticWorld& w = tour_world();
   const auto times = w.scenario().key_times();

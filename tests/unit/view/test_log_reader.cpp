@@ -9,7 +9,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "log_reader.hpp"
-#include "synthetic_run.hpp"
+#include "tool_test_helpers.hpp"
 
 namespace gpilot {
 namespace {
@@ -19,16 +19,11 @@ namespace fs = std::filesystem;
 class LogReaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("gpilot_log_reader_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
-    path = (dir / "run.lcmlog").string();
+    path = dir / "run.lcmlog";
     run.frames = 6;
     run.size = cv::Size(64, 48);
     events = test::write_synthetic_log(path, run);
   }
-  void TearDown() override { fs::remove_all(dir); }
   std::vector<char> bytes() {
     std::ifstream in(path, std::ios::binary);
     return std::vector<char>(std::istreambuf_iterator<char>(in), {});
@@ -47,7 +42,7 @@ class LogReaderTest : public ::testing::Test {
     return n;
   }
 
-  fs::path dir;
+  test::ScratchDir dir{"gpilot_log_reader"};
   std::string path;
   test::SyntheticRun run;
   int64_t events = 0;
@@ -116,7 +111,7 @@ TEST_F(LogReaderTest, CorruptBytesInTheMiddleAreSkippedToTheNextEvent) {
 }
 
 TEST_F(LogReaderTest, BadFilesAreClearErrors) {
-  EXPECT_THROW(LogReader((dir / "missing.lcmlog").string()), LogError);
+  EXPECT_THROW(LogReader(dir / "missing.lcmlog"), LogError);
   write({});
   try {
     LogReader r(path);
@@ -131,7 +126,7 @@ TEST_F(LogReaderTest, BadFilesAreClearErrors) {
   } catch (const LogError& e) {
     EXPECT_NE(std::string(e.what()).find("not an LCM log"), std::string::npos);
   }
-  EXPECT_THROW(LogReader(dir.string()), LogError);
+  EXPECT_THROW(LogReader(dir.path().string()), LogError);
 }
 
 TEST_F(LogReaderTest, DispatcherCountsWhatDoesNotDecodeOrIsInvalid) {

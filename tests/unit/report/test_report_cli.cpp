@@ -1,0 +1,81 @@
+// gpilot-report as a program: files written, table and --json on stdout, config respected, bad logs.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "tool_test_helpers.hpp"
+
+namespace gpilot {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kReport = std::string(GPILOT_BIN_DIR) + "/gpilot-report";
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class ReportCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    log = dir / "log.lcmlog";
+    run.size = cv::Size(32, 24);
+    test::write_synthetic_log(log, run);
+  }
+  test::CommandResult report(const std::string& args) { return test::run_tool(kReport, args, dir); }
+  test::ScratchDir dir{"gpilot_report_cli"};
+  std::string log;
+  test::SyntheticRun run;
+};
+
+TEST_F(ReportCliTest, WritesSummaryAndPlotAndPrintsATable) {
+  const test::CommandResult r = report(log + " --out " + dir / "run");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("gesture accuracy  94.7 %"), std::string::npos) << r.out;
+  const std::string j = slurp(dir / "run/summary.json");
+  EXPECT_NE(j.find("\"accuracy\": 0.947368"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"frames\": 100"), std::string::npos);
+  EXPECT_NE(j.find("\"frame_to_gesture_cmd\": {\"n\": 100, \"median\": 74, \"p95\": 79}"), std::string::npos) << j;
+  const cv::Mat png = cv::imread(dir / "run/trajectory.png");
+  ASSERT_FALSE(png.empty());
+  EXPECT_GE(png.cols, 1000);
+}
+
+TEST_F(ReportCliTest, JsonOnStdoutAndTheBufferSizeFromConfig) {
+  const test::CommandResult r = report(log + " --json --set decide.buffer_size=20");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.front(), '{');
+  EXPECT_NE(r.out.find("\"settle_frames\": 11"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"correct\": 36, \"evaluated\": 78"), std::string::npos) << r.out;
+  EXPECT_EQ(report(log + " --json --set decide.buffer_size=-3").code, 2);
+}
+
+TEST_F(ReportCliTest, ATruncatedLogIsReportedWithAWarning) {
+  fs::resize_file(log, fs::file_size(log) - 10);
+  const test::CommandResult r = report(log + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("\"warnings\": [\"log truncated"), std::string::npos) << r.out;
+}
+
+TEST_F(ReportCliTest, MissingOrForeignLogsAreErrors) {
+  test::CommandResult r = report(dir / "nope.lcmlog");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("No such file"), std::string::npos) << r.err;
+  std::ofstream(dir / "text.lcmlog") << "not a log\n";
+  r = report(dir / "text.lcmlog");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("not an LCM log"), std::string::npos) << r.err;
+  EXPECT_NE(report("").code, 0);  // LOG is required
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,136 @@
+// gpilot-report's numbers on a synthetic run with known counts, latencies, rates and accuracy.
+#include <gtest/gtest.h>
+
+#include "analyze_log.hpp"
+#include "tool_test_helpers.hpp"
+
+namespace gpilot {
+namespace {
+
+// The default synthetic run: 100 frames at 25 Hz; expected FINE for seq 0..49, CLOSER for 50..99; decided
+// HOVER 0..30, FINE 31..80 (UP at 40), CLOSER 81..99 (FURTHER at 90); GESTURE_CMD 70 + seq % 10 ms after
+// the frame's utime, FLIGHT_SETPOINT 5 ms later; CAMERA received 1 ms after its utime.
+Summary analyse(const test::SyntheticRun& run, int buffer_size, std::vector<TrajectoryPoint>* path = nullptr) {
+  const test::ScratchDir dir("gpilot_run_summary");
+  test::write_synthetic_log(dir / "run.lcmlog", run);
+  LogAnalysis a = analyse_log(dir / "run.lcmlog", buffer_size);
+  EXPECT_TRUE(a.warnings.empty());
+  if (path) *path = a.path;
+  return a.summary;
+}
+
+class RunSummaryTest : public ::testing::Test {
+ protected:
+  void SetUp() override { run.size = cv::Size(32, 24); }
+  test::SyntheticRun run;
+};
+
+TEST_F(RunSummaryTest, CountsFramesCommandsAndTrack) {
+  const Summary s = analyse(run, 60);
+  EXPECT_EQ(s.frames, 100);
+  EXPECT_NEAR(s.duration_s, 3.96, 1e-9);
+  EXPECT_NEAR(s.camera_hz, 25.0, 1e-9);
+  EXPECT_EQ(s.commands, 100);
+  EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_HOVER], 31);
+  EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_FINE], 49);
+  EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_UP], 1);
+  EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_DOWN], 0);
+  EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_CLOSER], 18);
+  EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_FURTHER], 1);
+  EXPECT_EQ(s.track_by_status[user_track_t::STATUS_TRACKING], 100);
+  EXPECT_EQ(s.vehicle_states, 100);
+}
+
+TEST_F(RunSummaryTest, LatenciesAreReceiptMinusFrameTimeMatchedBySeq) {
+  const Summary s = analyse(run, 60);
+  // 70..79 ms, ten of each: nearest-rank median 74, p95 79.
+  EXPECT_EQ(s.latency_cmd.n, 100);
+  EXPECT_DOUBLE_EQ(s.latency_cmd.median_ms, 74.0);
+  EXPECT_DOUBLE_EQ(s.latency_cmd.p95_ms, 79.0);
+  EXPECT_DOUBLE_EQ(s.latency_setpoint.median_ms, 79.0);
+  EXPECT_DOUBLE_EQ(s.latency_setpoint.p95_ms, 84.0);
+  EXPECT_DOUBLE_EQ(s.pipeline_cmd.median_ms, 73.0);  // CAMERA is received 1 ms after the frame's utime
+  EXPECT_EQ(s.unmatched_commands, 0);
+}
+
+TEST_F(RunSummaryTest, StageRatesAndProcessingTimesFromHealth) {
+  const Summary s = analyse(run, 60);
+  ASSERT_EQ(s.stages.size(), 2u);
+  EXPECT_EQ(s.stages[1].name, "gpilot-tracker");
+  const StageHealth& h = s.stages[1];
+  EXPECT_EQ(h.reports, 4);
+  EXPECT_FLOAT_EQ(h.rate_out_last_hz, 26.0);    // reports: 0 (no period), 24, 25, 26
+  EXPECT_FLOAT_EQ(h.rate_out_median_hz, 25.0);
+  EXPECT_FLOAT_EQ(h.processing_p50_ms, 3.0);    // p50s 2, 3, 4, 5: nearest-rank median 3
+  EXPECT_FLOAT_EQ(h.processing_p99_ms, 11.0);   // p99s 10..13
+  EXPECT_FLOAT_EQ(h.processing_p99_max_ms, 13.0);
+}
+
+TEST_F(RunSummaryTest, AccuracySkipsTheSettlingFramesAfterEachChange) {
+  // buffer 60: settle 31 frames; counted seq 31..49 (FINE) and 81..99 (CLOSER), one error in each.
+  const Summary s = analyse(run, 60);
+  const Accuracy& a = s.accuracy;
+  EXPECT_EQ(a.settle_frames, 31);
+  EXPECT_EQ(a.truth_frames, 100);
+  EXPECT_EQ(a.frames_with_command, 100);
+  EXPECT_EQ(a.skipped_settling, 62);
+  EXPECT_EQ(a.evaluated, 38);
+  EXPECT_EQ(a.correct, 36);
+  EXPECT_NEAR(a.value(), 36.0 / 38.0, 1e-12);
+  EXPECT_EQ(a.confusion[gesture_cmd_t::MODE_FINE][gesture_cmd_t::MODE_FINE], 18);
+  EXPECT_EQ(a.confusion[gesture_cmd_t::MODE_FINE][gesture_cmd_t::MODE_UP], 1);
+  EXPECT_EQ(a.confusion[gesture_cmd_t::MODE_CLOSER][gesture_cmd_t::MODE_CLOSER], 18);
+  EXPECT_EQ(a.confusion[gesture_cmd_t::MODE_CLOSER][gesture_cmd_t::MODE_FURTHER], 1);
+  EXPECT_NE(a.rule.find("31 frames"), std::string::npos) << a.rule;
+}
+
+TEST_F(RunSummaryTest, AShorterBufferCountsTheLagAsErrors) {
+  // buffer 20: settle 11; counted 11..49 and 61..99: HOVER 11..30 and FINE 61..80 are now wrong.
+  const Summary s = analyse(run, 20);
+  EXPECT_EQ(s.accuracy.evaluated, 78);
+  EXPECT_EQ(s.accuracy.correct, 36);
+  EXPECT_EQ(s.accuracy.confusion[gesture_cmd_t::MODE_FINE][gesture_cmd_t::MODE_HOVER], 20);
+  EXPECT_EQ(s.accuracy.confusion[gesture_cmd_t::MODE_CLOSER][gesture_cmd_t::MODE_FINE], 20);
+}
+
+TEST_F(RunSummaryTest, NoTruthNoAccuracy) {
+  run.with_truth = false;
+  const Summary s = analyse(run, 60);
+  EXPECT_FALSE(s.accuracy.has_value());
+  EXPECT_EQ(s.accuracy.truth_frames, 0);
+  const std::string j = summary_json(s);
+  EXPECT_NE(j.find("\"accuracy\": null"), std::string::npos);
+}
+
+TEST_F(RunSummaryTest, TrajectoryCarriesTheModeInForceAndTheUser) {
+  std::vector<TrajectoryPoint> path;
+  analyse(run, 60, &path);
+  ASSERT_EQ(path.size(), 100u);
+  // VEHICLE_STATE of frame k is received 10 ms after the frame, GESTURE_CMD 70..79 ms after: the mode in
+  // force then is the one of frame k - 2 (its command came at k*40 - 80 + 70..79 < k*40 + 10).
+  EXPECT_EQ(path[0].mode, -1);
+  EXPECT_EQ(path[1].mode, -1);
+  EXPECT_EQ(path[2].mode, gesture_cmd_t::MODE_HOVER);
+  EXPECT_EQ(path[42].mode, gesture_cmd_t::MODE_UP);      // frame 40's command
+  EXPECT_EQ(path[60].mode, gesture_cmd_t::MODE_FINE);
+  EXPECT_EQ(path[99].mode, gesture_cmd_t::MODE_CLOSER);
+  EXPECT_NEAR(path[50].north, 5.0, 1e-5);
+  EXPECT_NEAR(path[50].t_s, 2.0, 1e-9);
+  EXPECT_TRUE(path[50].has_person);
+  EXPECT_DOUBLE_EQ(path[50].person_north, 10.0);
+  EXPECT_DOUBLE_EQ(path[50].person_east, 2.0);
+}
+
+TEST(RunSummaryJson, IsOneObjectWithTheKeysTheLeadReads) {
+  RunAnalyzer a(60);
+  const std::string j = summary_json(a.summary(), {{"log", json_string("a \"b\"\n")}});
+  EXPECT_EQ(j.front(), '{');
+  EXPECT_EQ(j.substr(j.size() - 2), "}\n");
+  for (const char* key : {"\"frames\"", "\"commands\"", "\"stages\"", "\"latency_ms\"", "\"gesture_accuracy\"",
+                          "\"accuracy\"", "\"rule\"", "\"confusion\"", "\"vehicle\""})
+    EXPECT_NE(j.find(key), std::string::npos) << key;
+  EXPECT_NE(j.find("\"log\": \"a \\\"b\\\"\\n\""), std::string::npos) << j;
+}
+
+}  // namespace
+}  // namespace gpilot

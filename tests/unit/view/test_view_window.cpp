@@ -1,0 +1,116 @@
+// gpilot-view's window under Xvfb, inside the test's network namespace: dragging a box sends
+// TRACKER_INIT SET_BOX with that box in image pixels, 'r' sends RESET, 'e' FLIGHT_CONTROL ENGAGE.
+// Skipped where Xvfb or xdotool is not installed (deploy/setup installs both).
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "bus_node.hpp"
+#include "clock.hpp"
+#include "gpilot/flight_control_t.hpp"
+#include "gpilot/tracker_init_t.hpp"
+#include "tool_test_helpers.hpp"
+
+namespace gpilot {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kView = std::string(GPILOT_BIN_DIR) + "/gpilot-view";
+
+struct Heard {
+  std::string view_detail;
+  std::vector<tracker_init_t> inits;
+  std::vector<flight_control_t> controls;
+  static void health(const lcm::ReceiveBuffer*, const std::string&, const health_t* m, Heard* h) {
+    if (m->name == "gpilot-view") h->view_detail = m->state_detail.empty() ? "up" : m->state_detail;
+  }
+  static void init(const lcm::ReceiveBuffer*, const std::string&, const tracker_init_t* m, Heard* h) { h->inits.push_back(*m); }
+  static void control(const lcm::ReceiveBuffer*, const std::string&, const flight_control_t* m, Heard* h) {
+    h->controls.push_back(*m);
+  }
+};
+
+pid_t spawn(const std::vector<std::string>& argv, const std::string& log) {
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  if (!freopen(log.c_str(), "w", stderr)) _exit(126);
+  if (!freopen("/dev/null", "w", stdout)) _exit(126);
+  std::vector<char*> a;
+  for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
+  a.push_back(nullptr);
+  execv(a[0], a.data());
+  _exit(127);
+}
+
+void stop(pid_t pid) {
+  if (pid <= 0) return;
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
+}
+
+TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
+  if (access("/usr/bin/Xvfb", X_OK) != 0 || access("/usr/bin/xdotool", X_OK) != 0)
+    GTEST_SKIP() << "Xvfb or xdotool not installed (deploy/setup installs them)";
+  const test::ScratchDir dir("gpilot_view_window");
+  const std::string display = ":" + std::to_string(200 + ::getpid() % 700);
+  const pid_t xvfb = spawn({"/usr/bin/Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"},
+                           dir / "xvfb.txt");
+  const std::string socket = "/tmp/.X11-unix/X" + display.substr(1);
+  for (int i = 0; i < 100 && !fs::exists(socket); ++i) usleep(100000);
+  ASSERT_TRUE(fs::exists(socket)) << "Xvfb did not start on " << display;
+  setenv("DISPLAY", display.c_str(), 1);
+
+  lcm::LCM lc(kDefaultLcmUrl);
+  ASSERT_TRUE(lc.good());
+  Heard heard;
+  lc.subscribeFunction("HEALTH", &Heard::health, &heard);
+  lc.subscribeFunction("TRACKER_INIT", &Heard::init, &heard);
+  lc.subscribeFunction("FLIGHT_CONTROL", &Heard::control, &heard);
+  const pid_t view = spawn({kView, "--lcm-url", kDefaultLcmUrl}, dir / "view.txt");
+  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return !heard.view_detail.empty(); })) << "no HEALTH from gpilot-view";
+
+  // GIVEN the window showing frames
+  test::SyntheticRun run;
+  run.size = cv::Size(320, 240);
+  for (int s = 0; s < 20; ++s) {  // more than the viewer's hold (12), so frames are drawn
+    const image_t img = test::camera_of(run, s);
+    lc.publish("CAMERA", &img);
+    lc.handleTimeout(30);
+  }
+  ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return heard.view_detail.find("received 20 frames, drew 1") != std::string::npos; }))
+      << heard.view_detail;
+  const std::string xdo = "DISPLAY=" + display + " /usr/bin/xdotool ";
+  const std::string win = "$(" + xdo + "search --sync --onlyvisible --name '^gpilot-view$' | head -1)";
+
+  // WHEN a box is dragged from (40, 30) to (100, 80), then 'r' and 'e' are pressed
+  ASSERT_EQ(std::system(("W=" + win + "; " + xdo + "mousemove --window $W 40 30 mousedown 1 mousemove --window $W 70 50 " +
+                         "mousemove --window $W 100 80 mouseup 1 && " + xdo + "windowfocus --sync $W && sleep 0.3 && " +
+                         xdo + "key --window $W r && sleep 0.2 && " + xdo + "key --window $W e")
+                            .c_str()),
+            0);
+
+  // THEN the bus hears the box in image pixels, the reset and the engage, each from gpilot-view
+  EXPECT_TRUE(test::wait_for(lc, 10.0, [&] { return heard.inits.size() >= 2 && !heard.controls.empty(); }));
+  stop(view);
+  stop(xvfb);
+  ASSERT_GE(heard.inits.size(), 2u);
+  EXPECT_EQ(heard.inits[0].command, tracker_init_t::COMMAND_SET_BOX);
+  EXPECT_FLOAT_EQ(heard.inits[0].box[0], 40);
+  EXPECT_FLOAT_EQ(heard.inits[0].box[1], 30);
+  EXPECT_FLOAT_EQ(heard.inits[0].box[2], 60);
+  EXPECT_FLOAT_EQ(heard.inits[0].box[3], 50);
+  EXPECT_EQ(heard.inits[0].source, "gpilot-view");
+  EXPECT_EQ(heard.inits[1].command, tracker_init_t::COMMAND_RESET);
+  ASSERT_FALSE(heard.controls.empty());
+  EXPECT_EQ(heard.controls[0].command, flight_control_t::COMMAND_ENGAGE);
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,91 @@
+// gpilot-report: a run's numbers and pictures from its LCM log. Reads CAMERA, USER_TRACK, GESTURE_CMD,
+// FLIGHT_SETPOINT, VEHICLE_STATE, GROUND_TRUTH and HEALTH from the log (no bus). Writes DIR/summary.json and
+// DIR/trajectory.png, prints a table (or, with --json, the summary JSON) on stdout, progress on stderr.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "analyze_log.hpp"
+#include "config.hpp"
+#include "decide/decide_params.hpp"
+#include "service_cli.hpp"
+#include "trajectory_plot.hpp"
+
+namespace {
+
+constexpr const char* kName = "gpilot-report";
+
+std::string json_list(const std::vector<std::string>& items) {
+  std::string j = "[";
+  for (size_t i = 0; i < items.size(); ++i) j += (i ? ", " : "") + gpilot::json_string(items[i]);
+  return j + "]";
+}
+
+int report(const std::string& log_path, const std::string& out_dir, bool json, int buffer_size) {
+  using namespace gpilot;
+  const LogAnalysis a = analyse_log(log_path, buffer_size, kName);
+  for (const auto& w : a.warnings) std::fprintf(stderr, "%s: warning: %s\n", kName, w.c_str());
+
+  const Summary& s = a.summary;
+  std::string rejected = "{";
+  for (const auto& [ch, n] : a.rejected)
+    rejected += (rejected.size() > 1 ? ", " : "") + json_string(ch) + ": " + std::to_string(n);
+  rejected += "}";
+  const std::string j = summary_json(s, {{"log", json_string(log_path)},
+                                         {"log_events", std::to_string(a.events)},
+                                         {"buffer_size", std::to_string(buffer_size)},
+                                         {"rejected_messages", rejected},
+                                         {"warnings", json_list(a.warnings)}});
+  if (!out_dir.empty()) {
+    namespace fs = std::filesystem;
+    fs::create_directories(out_dir);
+    const std::string json_path = (fs::path(out_dir) / "summary.json").string();
+    std::ofstream(json_path) << j;
+    const std::string png = (fs::path(out_dir) / "trajectory.png").string();
+    const std::string title = "gesture-pilot run: " + fs::path(log_path).filename().string() + "  (" +
+                              std::to_string(s.vehicle_states) + " vehicle states, " +
+                              std::to_string(static_cast<long long>(s.duration_s + 0.5)) + " s)";
+    if (!cv::imwrite(png, draw_trajectory(a.path, title))) throw std::runtime_error("cannot write " + png);
+    if (!std::ifstream(json_path)) throw std::runtime_error("cannot write " + json_path);
+    std::fprintf(stderr, "%s: wrote %s and %s\n", kName, json_path.c_str(), png.c_str());
+  }
+  std::fputs(json ? j.c_str() : summary_table(s).c_str(), stdout);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "Reads a run's LCM log and writes DIR/summary.json (frames, commands per mode, per-stage rates and processing "
+      "times from HEALTH, end-to-end latency, gesture accuracy against GROUND_TRUTH with a confusion matrix) and "
+      "DIR/trajectory.png (the vehicle's path coloured by gesture mode). Prints a table, or the JSON with --json.",
+      kName);
+  std::string log, out, config_file;
+  std::vector<std::string> sets;
+  bool json = false;
+  app.add_option("LOG", log, "the run's LCM log (lcm-logger)")->required();
+  app.add_option("--out", out, "folder for summary.json and trajectory.png (created; none: stdout only)");
+  app.add_flag("--json", json, "print the summary JSON on stdout instead of the table");
+  app.add_option("--config", config_file, "the run's config (for decide.buffer_size; default: built-in defaults)");
+  app.add_option("--set", sets, "override one key: section.key=value (repeatable)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    const gpilot::Config config = gpilot::load_config(config_file, sets);
+    const auto decide = config.section<gpilot::DecideParams>("decide");
+    return report(log, out, json, decide.buffer_size);
+  } catch (const gpilot::ConfigError& e) {
+    std::fprintf(stderr, "%s: config error: %s\n", kName, e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", kName, e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,331 @@
+#include "run_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "overlay.hpp"
+#include "stage_stats.hpp"
+
+namespace gpilot {
+namespace {
+
+LatencyStats latency(std::vector<int64_t> us) {
+  LatencyStats s;
+  s.n = static_cast<int64_t>(us.size());
+  if (us.empty()) return s;
+  s.median_ms = quantile(us, 0.5) / 1000.0;
+  s.p95_ms = quantile(us, 0.95) / 1000.0;
+  return s;
+}
+
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::vector<int64_t> scaled;  // quantile() is over integers: work in microunits
+  for (double x : v) scaled.push_back(static_cast<int64_t>(std::llround(x * 1e6)));
+  return quantile(scaled, 0.5) / 1e6;
+}
+
+const char* health_state_name(int s) {
+  switch (s) {
+    case health_t::STATE_STARTING: return "STARTING";
+    case health_t::STATE_OK: return "OK";
+    case health_t::STATE_DEGRADED: return "DEGRADED";
+    case health_t::STATE_ERROR: return "ERROR";
+    case health_t::STATE_STOPPING: return "STOPPING";
+    default: return "?";
+  }
+}
+
+bool valid_mode(int m) { return m >= 0 && m < kModes; }
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+std::string num(int64_t v) { return std::to_string(v); }
+
+std::string latency_json(const LatencyStats& l) {
+  return "{\"n\": " + num(l.n) + ", \"median\": " + (l.n ? num(l.median_ms) : "null") +
+         ", \"p95\": " + (l.n ? num(l.p95_ms) : "null") + "}";
+}
+
+}  // namespace
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += static_cast<char>(c);
+        }
+    }
+  }
+  return out + "\"";
+}
+
+RunAnalyzer::RunAnalyzer(int buffer_size) : buffer_size_(std::max(1, buffer_size)) {}
+
+void RunAnalyzer::on_camera(const image_t& m, int64_t recv_utime) {
+  if (frames_ == 0) first_frame_utime_ = m.utime;
+  last_frame_utime_ = std::max(last_frame_utime_, m.utime);
+  ++frames_;
+  frames_by_seq_[m.seq] = FrameTimes{m.utime, recv_utime};
+}
+
+void RunAnalyzer::on_track(const user_track_t& m, int64_t) {
+  ++track_frames_;
+  if (m.status >= 0 && m.status < 3) ++track_by_status_[static_cast<size_t>(m.status)];
+}
+
+void RunAnalyzer::on_command(const gesture_cmd_t& m, int64_t recv_utime) {
+  ++commands_;
+  if (valid_mode(m.mode)) ++commands_by_mode_[static_cast<size_t>(m.mode)];
+  command_mode_by_seq_[m.seq] = m.mode;
+  current_mode_ = m.mode;
+  const auto f = frames_by_seq_.find(m.seq);
+  if (f == frames_by_seq_.end()) {
+    ++unmatched_;
+    return;
+  }
+  lat_cmd_.push_back(recv_utime - f->second.utime);
+  pipe_cmd_.push_back(recv_utime - f->second.recv);
+}
+
+void RunAnalyzer::on_setpoint(const flight_setpoint_t& m, int64_t recv_utime) {
+  if (m.seq < 0 || setpoint_seen_.count(m.seq)) return;  // the first setpoint that follows each frame
+  setpoint_seen_[m.seq] = true;
+  const auto f = frames_by_seq_.find(m.seq);
+  if (f == frames_by_seq_.end()) return;
+  lat_sp_.push_back(recv_utime - f->second.utime);
+  pipe_sp_.push_back(recv_utime - f->second.recv);
+}
+
+void RunAnalyzer::on_vehicle(const vehicle_state_t& m, int64_t recv_utime) {
+  if (first_vehicle_recv_ < 0) first_vehicle_recv_ = recv_utime;
+  TrajectoryPoint p{};
+  p.t_s = (recv_utime - first_vehicle_recv_) * 1e-6;
+  p.north = m.position[0];
+  p.east = m.position[1];
+  p.down = m.position[2];
+  p.yaw = m.attitude[2];
+  p.mode = current_mode_;
+  p.has_person = has_person_;
+  p.person_north = person_n_;
+  p.person_east = person_e_;
+  path_.push_back(p);
+}
+
+void RunAnalyzer::on_truth(const ground_truth_t& m, int64_t) {
+  expected_mode_by_seq_[m.seq] = m.expected_mode;
+  has_person_ = true;
+  person_n_ = m.person_position[0];
+  person_e_ = m.person_position[1];
+}
+
+void RunAnalyzer::on_health(const health_t& m, int64_t) { health_[m.name].push_back(m); }
+
+Summary RunAnalyzer::summary() const {
+  Summary s;
+  s.frames = frames_;
+  s.duration_s = frames_ > 1 ? (last_frame_utime_ - first_frame_utime_) * 1e-6 : 0.0;
+  s.camera_hz = s.duration_s > 0 ? (frames_ - 1) / s.duration_s : 0.0;
+  s.commands_by_mode = commands_by_mode_;
+  s.commands = commands_;
+  s.track_frames = track_frames_;
+  s.track_by_status = track_by_status_;
+  s.latency_cmd = latency(lat_cmd_);
+  s.latency_setpoint = latency(lat_sp_);
+  s.pipeline_cmd = latency(pipe_cmd_);
+  s.pipeline_setpoint = latency(pipe_sp_);
+  s.unmatched_commands = unmatched_;
+
+  for (const auto& [name, reports] : health_) {
+    StageHealth h;
+    h.name = name;
+    h.reports = static_cast<int64_t>(reports.size());
+    std::vector<double> rates, p50, p99;
+    for (const auto& r : reports) {
+      if (r.seq > 0) rates.push_back(r.rate_out_hz);
+      if (r.processing_ms_p50 > 0 || r.processing_ms_p99 > 0) {
+        p50.push_back(r.processing_ms_p50);
+        p99.push_back(r.processing_ms_p99);
+        h.processing_p99_max_ms = std::max<double>(h.processing_p99_max_ms, r.processing_ms_p99);
+      }
+    }
+    const health_t& last = reports.back();
+    h.rate_out_last_hz = last.rate_out_hz;
+    h.rate_out_median_hz = median_of(rates);
+    h.processing_p50_ms = median_of(p50);
+    h.processing_p99_ms = median_of(p99);
+    h.messages_in = last.messages_in;
+    h.messages_out = last.messages_out;
+    h.rejected = last.rejected;
+    h.dropped = last.dropped;
+    h.last_state = last.state;
+    h.last_reject_reason = last.last_reject_reason;
+    s.stages.push_back(h);
+  }
+
+  // Accuracy: a frame counts once the expected gesture has been held long enough to fill the paper's
+  // buffer past its threshold, i.e. from settle_frames frames after each change of expected_mode.
+  Accuracy& a = s.accuracy;
+  a.settle_frames = buffer_size_ / 2 + 1;
+  a.rule = "frames with a GESTURE_CMD and a GROUND_TRUTH of the same seq, expected_mode == mode; the first " +
+           std::to_string(a.settle_frames) + " frames (decide.buffer_size / 2 + 1, buffer_size " +
+           std::to_string(buffer_size_) + ") from the start and from each change of GROUND_TRUTH.expected_mode are not counted";
+  int prev = -1;
+  int64_t change_seq = 0;
+  bool first = true;
+  for (const auto& [seq, expected] : expected_mode_by_seq_) {
+    ++a.truth_frames;
+    if (first || expected != prev) change_seq = seq;
+    first = false;
+    prev = expected;
+    const auto c = command_mode_by_seq_.find(seq);
+    if (c == command_mode_by_seq_.end()) continue;
+    ++a.frames_with_command;
+    if (seq - change_seq < a.settle_frames) {
+      ++a.skipped_settling;
+      continue;
+    }
+    ++a.evaluated;
+    if (c->second == expected) ++a.correct;
+    if (valid_mode(expected) && valid_mode(c->second))
+      ++a.confusion[static_cast<size_t>(expected)][static_cast<size_t>(c->second)];
+  }
+
+  s.vehicle_states = static_cast<int64_t>(path_.size());
+  for (size_t i = 1; i < path_.size(); ++i)
+    s.path_length_m += std::sqrt(std::pow(path_[i].north - path_[i - 1].north, 2) +
+                                 std::pow(path_[i].east - path_[i - 1].east, 2) +
+                                 std::pow(path_[i].down - path_[i - 1].down, 2));
+  return s;
+}
+
+std::string summary_json(const Summary& s, const std::vector<std::pair<std::string, std::string>>& extra) {
+  std::string j = "{\n";
+  for (const auto& [k, v] : extra) j += "  " + json_string(k) + ": " + v + ",\n";
+  j += "  \"frames\": " + num(s.frames) + ",\n";
+  j += "  \"duration_s\": " + num(s.duration_s) + ",\n";
+  j += "  \"camera_hz\": " + num(s.camera_hz) + ",\n";
+  j += "  \"commands\": {\"total\": " + num(s.commands) + ", \"by_mode\": {";
+  for (int m = 0; m < kModes; ++m)
+    j += std::string(m ? ", " : "") + json_string(mode_name(m)) + ": " + num(s.commands_by_mode[static_cast<size_t>(m)]);
+  j += "}},\n";
+  j += "  \"track\": {\"frames\": " + num(s.track_frames);
+  for (int st = 0; st < 3; ++st)
+    j += ", " + json_string(track_status_name(st)) + ": " + num(s.track_by_status[static_cast<size_t>(st)]);
+  j += "},\n";
+  j += "  \"stages\": {";
+  for (size_t i = 0; i < s.stages.size(); ++i) {
+    const auto& h = s.stages[i];
+    j += std::string(i ? "," : "") + "\n    " + json_string(h.name) + ": {\"reports\": " + num(h.reports) +
+         ", \"rate_out_hz_last\": " + num(h.rate_out_last_hz) + ", \"rate_out_hz_median\": " +
+         num(h.rate_out_median_hz) + ", \"processing_ms_p50\": " + num(h.processing_p50_ms) +
+         ", \"processing_ms_p99\": " + num(h.processing_p99_ms) + ", \"processing_ms_p99_max\": " +
+         num(h.processing_p99_max_ms) + ", \"messages_in\": " + num(h.messages_in) + ", \"messages_out\": " +
+         num(h.messages_out) + ", \"rejected\": " + num(h.rejected) + ", \"dropped\": " + num(h.dropped) +
+         ", \"last_state\": " + json_string(health_state_name(h.last_state)) +
+         ", \"last_reject_reason\": " + json_string(h.last_reject_reason) + "}";
+  }
+  j += s.stages.empty() ? "},\n" : "\n  },\n";
+  j += "  \"latency_ms\": {\n";
+  j += "    \"frame_to_gesture_cmd\": " + latency_json(s.latency_cmd) + ",\n";
+  j += "    \"frame_to_flight_setpoint\": " + latency_json(s.latency_setpoint) + ",\n";
+  j += "    \"camera_receipt_to_gesture_cmd\": " + latency_json(s.pipeline_cmd) + ",\n";
+  j += "    \"camera_receipt_to_flight_setpoint\": " + latency_json(s.pipeline_setpoint) + ",\n";
+  j += "    \"unmatched_commands\": " + num(s.unmatched_commands) + ",\n";
+  j += "    \"definition\": " +
+       json_string("receipt time in the log minus the frame's utime (frame_to_*) or minus the CAMERA frame's receipt "
+                   "time (camera_receipt_to_*), matched by seq; FLIGHT_SETPOINT: the first one of each seq") +
+       "\n  },\n";
+  const Accuracy& a = s.accuracy;
+  j += "  \"gesture_accuracy\": {\n";
+  j += "    \"accuracy\": " + (a.has_value() ? num(a.value()) : "null") + ",\n";
+  j += "    \"accuracy_percent\": " + (a.has_value() ? num(100.0 * a.value()) : "null") + ",\n";
+  j += "    \"correct\": " + num(a.correct) + ", \"evaluated\": " + num(a.evaluated) + ",\n";
+  j += "    \"truth_frames\": " + num(a.truth_frames) + ", \"frames_with_command\": " + num(a.frames_with_command) +
+       ", \"skipped_settling\": " + num(a.skipped_settling) + ",\n";
+  j += "    \"settle_frames\": " + num(static_cast<int64_t>(a.settle_frames)) + ",\n";
+  j += "    \"rule\": " + json_string(a.rule) + ",\n";
+  j += "    \"confusion\": {\"modes\": [";
+  for (int m = 0; m < kModes; ++m) j += std::string(m ? ", " : "") + json_string(mode_name(m));
+  j += "], \"rows_expected_columns_decided\": [";
+  for (int e = 0; e < kModes; ++e) {
+    j += std::string(e ? ", " : "") + "[";
+    for (int d = 0; d < kModes; ++d)
+      j += std::string(d ? ", " : "") + num(a.confusion[static_cast<size_t>(e)][static_cast<size_t>(d)]);
+    j += "]";
+  }
+  j += "]}\n  },\n";
+  j += "  \"vehicle\": {\"states\": " + num(s.vehicle_states) + ", \"path_length_m\": " + num(s.path_length_m) + "}\n";
+  j += "}\n";
+  return j;
+}
+
+std::string summary_table(const Summary& s) {
+  std::string t;
+  char buf[256];
+  auto line = [&](const char* f, auto... args) {
+    std::snprintf(buf, sizeof buf, f, args...);
+    t += buf;
+  };
+  line("frames            %lld over %.1f s (%.1f Hz)\n", static_cast<long long>(s.frames), s.duration_s, s.camera_hz);
+  line("commands          %lld:", static_cast<long long>(s.commands));
+  for (int m = 0; m < kModes; ++m) line(" %s %lld", mode_name(m), static_cast<long long>(s.commands_by_mode[static_cast<size_t>(m)]));
+  t += "\n";
+  line("track             %lld frames: TRACKING %lld, LOST %lld, SEARCHING %lld\n", static_cast<long long>(s.track_frames),
+       static_cast<long long>(s.track_by_status[1]), static_cast<long long>(s.track_by_status[2]),
+       static_cast<long long>(s.track_by_status[0]));
+  auto lat = [&](const char* name, const LatencyStats& l) {
+    if (l.n)
+      line("%-34s %6lld %9.1f %9.1f\n", name, static_cast<long long>(l.n), l.median_ms, l.p95_ms);
+    else
+      line("%-34s %6d %9s %9s\n", name, 0, "-", "-");
+  };
+  line("\n%-34s %6s %9s %9s\n", "latency (ms)", "n", "median", "p95");
+  lat("frame utime -> GESTURE_CMD", s.latency_cmd);
+  lat("frame utime -> FLIGHT_SETPOINT", s.latency_setpoint);
+  lat("CAMERA receipt -> GESTURE_CMD", s.pipeline_cmd);
+  lat("CAMERA receipt -> FLIGHT_SETPOINT", s.pipeline_setpoint);
+  line("\n%-18s %7s %9s %9s %9s %9s %9s %8s\n", "stage", "reports", "Hz last", "Hz med", "p50 ms", "p99 ms",
+       "rejected", "state");
+  for (const auto& h : s.stages)
+    line("%-18s %7lld %9.1f %9.1f %9.2f %9.2f %9lld %8s\n", h.name.c_str(), static_cast<long long>(h.reports),
+         h.rate_out_last_hz, h.rate_out_median_hz, h.processing_p50_ms, h.processing_p99_ms,
+         static_cast<long long>(h.rejected), health_state_name(h.last_state));
+  const Accuracy& a = s.accuracy;
+  t += "\n";
+  if (a.has_value())
+    line("gesture accuracy  %.1f %% (%lld of %lld frames; %lld settling frames skipped, %lld truth frames)\n",
+         100.0 * a.value(), static_cast<long long>(a.correct), static_cast<long long>(a.evaluated),
+         static_cast<long long>(a.skipped_settling), static_cast<long long>(a.truth_frames));
+  else
+    line("gesture accuracy  - (no frame with both GROUND_TRUTH and GESTURE_CMD after settling; %lld truth frames)\n",
+         static_cast<long long>(a.truth_frames));
+  line("%-18s", "expected \\ decided");
+  for (int m = 0; m < kModes; ++m) line(" %8s", mode_name(m));
+  t += "\n";
+  for (int e = 0; e < kModes; ++e) {
+    line("%-18s", mode_name(e));
+    for (int d = 0; d < kModes; ++d) line(" %8lld", static_cast<long long>(a.confusion[static_cast<size_t>(e)][static_cast<size_t>(d)]));
+    t += "\n";
+  }
+  line("\nvehicle           %lld states, path %.2f m\n", static_cast<long long>(s.vehicle_states), s.path_length_m);
+  return t;
+}
+
+}  // namespace gpilot

@@ -1,0 +1,133 @@
+// What gpilot-report measures in a run's log: frames, commands per mode, per-stage rates and processing
+// times (HEALTH), end-to-end latency (frame utime to the receipt of its GESTURE_CMD / first
+// FLIGHT_SETPOINT, matched by seq), gesture accuracy against GROUND_TRUTH with a confusion matrix, and the
+// vehicle's path coloured by the gesture mode in force. Pure: messages and their log receipt times in,
+// numbers out; no LCM, no clock, no files.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gpilot/flight_setpoint_t.hpp"
+#include "gpilot/gesture_cmd_t.hpp"
+#include "gpilot/ground_truth_t.hpp"
+#include "gpilot/health_t.hpp"
+#include "gpilot/image_t.hpp"
+#include "gpilot/user_track_t.hpp"
+#include "gpilot/vehicle_state_t.hpp"
+
+namespace gpilot {
+
+constexpr int kModes = 6;  // gesture_cmd_t.MODE_HOVER .. MODE_FURTHER
+
+struct LatencyStats {
+  int64_t n = 0;
+  double median_ms = 0;  // nearest-rank; meaningful only when n > 0
+  double p95_ms = 0;
+};
+
+struct StageHealth {
+  std::string name;
+  int64_t reports = 0;
+  double rate_out_last_hz = 0;
+  double rate_out_median_hz = 0;     // over reports after the first (the first has no period)
+  double processing_p50_ms = 0;      // median over reports of the period's p50 (periods with samples)
+  double processing_p99_ms = 0;      // median over reports of the period's p99
+  double processing_p99_max_ms = 0;  // worst period
+  int64_t messages_in = 0, messages_out = 0, rejected = 0, dropped = 0;  // last report
+  int last_state = 0;
+  std::string last_reject_reason;
+};
+
+struct Accuracy {
+  int settle_frames = 0;   // frames skipped after each change of expected_mode
+  std::string rule;        // the rule in words, for the JSON
+  int64_t truth_frames = 0;         // GROUND_TRUTH messages
+  int64_t frames_with_command = 0;  // of those, with a GESTURE_CMD of the same seq
+  int64_t skipped_settling = 0;     // of those, inside a settling window
+  int64_t evaluated = 0;
+  int64_t correct = 0;
+  bool has_value() const { return evaluated > 0; }
+  double value() const { return evaluated > 0 ? static_cast<double>(correct) / evaluated : 0.0; }
+  std::array<std::array<int64_t, kModes>, kModes> confusion{};  // [expected][decided]
+};
+
+struct Summary {
+  int64_t frames = 0;
+  double duration_s = 0;  // first to last CAMERA utime
+  double camera_hz = 0;   // (frames - 1) / duration
+  std::array<int64_t, kModes> commands_by_mode{};
+  int64_t commands = 0;
+  int64_t track_frames = 0;                       // USER_TRACK messages
+  std::array<int64_t, 3> track_by_status{};       // SEARCHING, TRACKING, LOST
+  std::vector<StageHealth> stages;                // by name
+  LatencyStats latency_cmd, latency_setpoint;     // receipt - frame utime
+  LatencyStats pipeline_cmd, pipeline_setpoint;   // receipt - CAMERA receipt (both on the logger's clock)
+  int64_t unmatched_commands = 0;                 // GESTURE_CMD whose CAMERA frame is not in the log
+  Accuracy accuracy;
+  int64_t vehicle_states = 0;
+  double path_length_m = 0;
+};
+
+// The vehicle's path for the plot: one point per VEHICLE_STATE.
+struct TrajectoryPoint {
+  double t_s;                // since the first VEHICLE_STATE, by log receipt time
+  double north, east, down;  // metres, NED
+  double yaw;                // rad
+  int mode;                  // GESTURE_CMD mode in force (the latest received before it), -1 before any
+  bool has_person;
+  double person_north, person_east;  // the latest GROUND_TRUTH person_position, when has_person
+};
+
+class RunAnalyzer {
+ public:
+  // buffer_size: decide.buffer_size; the accuracy skips buffer_size / 2 + 1 frames after each change.
+  explicit RunAnalyzer(int buffer_size);
+
+  // Each message with the time the logger received it; call in log order.
+  void on_camera(const image_t& m, int64_t recv_utime);
+  void on_track(const user_track_t& m, int64_t recv_utime);
+  void on_command(const gesture_cmd_t& m, int64_t recv_utime);
+  void on_setpoint(const flight_setpoint_t& m, int64_t recv_utime);
+  void on_vehicle(const vehicle_state_t& m, int64_t recv_utime);
+  void on_truth(const ground_truth_t& m, int64_t recv_utime);
+  void on_health(const health_t& m, int64_t recv_utime);
+
+  Summary summary() const;
+  const std::vector<TrajectoryPoint>& trajectory() const { return path_; }
+
+ private:
+  struct FrameTimes {
+    int64_t utime = 0, recv = 0;
+  };
+  int buffer_size_;
+  int64_t frames_ = 0, first_frame_utime_ = 0, last_frame_utime_ = 0;
+  std::map<int64_t, FrameTimes> frames_by_seq_;
+  std::map<int64_t, int> command_mode_by_seq_;
+  std::map<int64_t, int> expected_mode_by_seq_;
+  std::array<int64_t, kModes> commands_by_mode_{};
+  int64_t commands_ = 0, unmatched_ = 0;
+  std::array<int64_t, 3> track_by_status_{};
+  int64_t track_frames_ = 0;
+  std::vector<int64_t> lat_cmd_, lat_sp_, pipe_cmd_, pipe_sp_;
+  std::map<int64_t, bool> setpoint_seen_;
+  std::map<std::string, std::vector<health_t>> health_;
+  std::vector<TrajectoryPoint> path_;
+  int current_mode_ = -1;
+  bool has_person_ = false;
+  double person_n_ = 0, person_e_ = 0;
+  int64_t first_vehicle_recv_ = -1;
+};
+
+// One JSON object; `extra` members (already JSON) are added at the top level (log file, warnings ...).
+std::string summary_json(const Summary& s, const std::vector<std::pair<std::string, std::string>>& extra = {});
+// The human table.
+std::string summary_table(const Summary& s);
+
+// A JSON string literal of s (quotes and escapes).
+std::string json_string(const std::string& s);
+
+}  // namespace gpilot
