@@ -82,6 +82,10 @@ int main(int argc, char** argv) {
       const std::string why = image_to_mat(frame, bgr);
       if (!why.empty()) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": " + why);
       if (bgr.type() != CV_8UC3) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8");
+      if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
+        return node.reject("USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) +
+                           "x" + std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
+                           std::to_string(bgr.rows));
       node.publish("HAND_OBS", observe(detector, frame, track, bgr));
       node.set_state(health_t::STATE_OK, "skin model " + model_path);
     };

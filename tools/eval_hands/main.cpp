@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
     int written = 0, steady = 0, last_truth = -1;
     bool png_for_kind[3] = {false, false, false};
     int error_pngs = 0;
+    int64_t last_error_png = -1000000;
     if (!png_dir.empty()) std::filesystem::create_directories(png_dir);
     std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
     if (!csv_path.empty() && !csv) throw std::runtime_error("cannot write " + csv_path);
@@ -115,12 +116,15 @@ int main(int argc, char** argv) {
           front_right += right_side;
         }
       }
-      // PNGs: the first steady frame of each kind (held 10 frames), then the first few wrong kinds.
+      // PNGs: the first steady frame of each kind (held 10 frames), then wrong kinds at least 2 s apart.
       const bool steady_pick = steady >= 10 / stride && !png_for_kind[truth];
-      const bool error_pick = truth != got && error_pngs < pngs / 2;
+      const bool error_pick = truth != got && error_pngs < pngs / 2 && i - last_error_png >= static_cast<int64_t>(2 * fps);
       if (!png_dir.empty() && written < pngs && (steady_pick || error_pick)) {
         png_for_kind[truth] = png_for_kind[truth] || steady_pick;
-        error_pngs += !steady_pick;
+        if (!steady_pick) {
+          ++error_pngs;
+          last_error_png = i;
+        }
         cv::Mat img = f.bgr.clone();
         draw_hand_overlay(img, r, detector.last_mask(), detector.last_roi());
         const cv::Point2f from = truth == 1 ? f.truth.shoulder_centre : f.truth.body_centre;
