@@ -68,6 +68,23 @@ void BusNode::publish_raw(const std::string& channel, const void* data, size_t s
   lcm_->publish(channel, data, static_cast<unsigned int>(size));
 }
 
+void BusNode::subscribe_raw(const std::string& channel, RawHandler fn) {
+  auto sub = std::make_unique<RawSubscription>();
+  sub->fn = std::move(fn);
+  lcm_->subscribeFunction(channel, &BusNode::on_any, sub.get());
+  subs_.push_back(std::move(sub));
+}
+
+void BusNode::on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub) {
+  sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime);
+}
+
+int BusNode::drain() {
+  int n = 0;
+  while (lcm_->handleTimeout(0) > 0) ++n;
+  return n;
+}
+
 void BusNode::every(double period_s, std::function<void()> fn) {
   const int64_t period = std::max<int64_t>(1, seconds_to_utime(period_s));
   timers_.push_back(Timer{period, monotonic_utime() + period, std::move(fn)});

@@ -56,6 +56,14 @@ class BusNode {
   // Publishes raw bytes (tools and tests that must send malformed data).
   void publish_raw(const std::string& channel, const void* data, size_t size);
 
+  // Every message on channel (a regex in LCM's sense), undecoded: fn(channel, data, size, receive_utime).
+  // For tools that record or forward (gpilot-replay); stages use the typed subscribe.
+  using RawHandler = std::function<void(const std::string&, const void*, size_t, int64_t)>;
+  void subscribe_raw(const std::string& channel, RawHandler fn);
+
+  // Dispatches every message already queued (memq:// replay); returns how many were handled.
+  int drain();
+
   // Runs fn every period_s seconds from the loop, on the monotonic clock.
   void every(double period_s, std::function<void()> fn);
 
@@ -91,6 +99,11 @@ class BusNode {
     int64_t next_us;
     std::function<void()> fn;
   };
+
+  struct RawSubscription : SubscriptionBase {
+    RawHandler fn;
+  };
+  static void on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub);
 
   template <class Msg>
   static void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub);

@@ -1,7 +1,10 @@
-// Parameters of gpilot-capture (section `capture`): what is asked of a camera and how frames are published.
+// Parameters of gpilot-capture (section `capture`): what is asked of a camera, how frames are published, and
+// the synthetic world's camera and data (group `capture.synthetic`).
 #pragma once
 
 #include <string>
+
+#include "synthetic_params.hpp"
 
 namespace gpilot {
 
@@ -12,6 +15,7 @@ struct CaptureParams {
   std::string pixel_format = "BGR8";  //!< published format: BGR8, GRAY8 or JPEG
   int jpeg_quality = 90;              //!< 1..100, with pixel_format JPEG
   double camera_retry_s = 1.0;        //!< wait before reopening a camera that disappeared
+  SyntheticParams synthetic;          //!< the default source: the synthetic world
 
   template <class V>
   void visit(V& v) {
@@ -21,6 +25,7 @@ struct CaptureParams {
     v("pixel_format", pixel_format, "published pixel format: BGR8, GRAY8 or JPEG");
     v("jpeg_quality", jpeg_quality, 1, 100, "JPEG quality when pixel_format is JPEG");
     v("camera_retry_s", camera_retry_s, 0.05, 60.0, "wait before reopening a lost camera, s");
+    v.group("synthetic", synthetic);
   }
 };
 

@@ -19,6 +19,8 @@ struct FlightParams {
   double yaw_gain = 2.0;              //!< rad/s per image width of user-box offset from the image centre
   double yaw_deadband = 0.05;         //!< offsets below this fraction of the image width are ignored
   double max_yaw_rate = 0.8;          //!< rad/s
+  double max_command_magnitude = 3.0; //!< |x|, |y| of a command above this many box widths is invalid (hover)
+  bool require_vehicle_state = true;  //!< hover without a fresh VEHICLE_STATE (off only for LCM-only dry runs)
 
   template <class V>
   void visit(V& v) {
@@ -34,6 +36,9 @@ struct FlightParams {
     v("yaw_gain", yaw_gain, 0.0, 20.0, "yaw rate per image width of user offset, rad/s");
     v("yaw_deadband", yaw_deadband, 0.0, 0.5, "user offsets below this fraction of image width: no yaw");
     v("max_yaw_rate", max_yaw_rate, 0.0, 10.0, "yaw rate limit, rad/s");
+    v("max_command_magnitude", max_command_magnitude, 0.1, 100.0,
+      "command x or y beyond this many box widths is invalid: hover");
+    v("require_vehicle_state", require_vehicle_state, "hover unless a fresh vehicle state has been received");
   }
 };
 
@@ -45,6 +50,11 @@ struct SimParams {
   double start_east = 0.0;
   double start_down = -1.5;           //!< 1.5 m above ground
   double start_yaw = 0.0;             //!< rad
+  double max_horizontal_speed = 5.0;  //!< m/s, the airframe's limit
+  double max_vertical_speed = 3.0;    //!< m/s
+  double max_yaw_rate = 3.0;          //!< rad/s
+  double land_speed = 0.5;            //!< m/s, descent while landing
+  double takeoff_speed = 1.0;         //!< m/s, climb while taking off
 
   template <class V>
   void visit(V& v) {
@@ -55,16 +65,24 @@ struct SimParams {
     v("start_east", start_east, -1e4, 1e4, "start position east, m");
     v("start_down", start_down, -1e4, 1e4, "start position down, m (negative is up)");
     v("start_yaw", start_yaw, -3.15, 3.15, "start yaw, rad");
+    v("max_horizontal_speed", max_horizontal_speed, 0.0, 50.0, "airframe horizontal speed limit, m/s");
+    v("max_vertical_speed", max_vertical_speed, 0.0, 20.0, "airframe vertical speed limit, m/s");
+    v("max_yaw_rate", max_yaw_rate, 0.0, 20.0, "airframe yaw rate limit, rad/s");
+    v("land_speed", land_speed, 0.05, 5.0, "descent speed while landing, m/s");
+    v("takeoff_speed", takeoff_speed, 0.05, 5.0, "climb speed while taking off, m/s");
   }
 };
 
 struct MavlinkParams {
-  std::string endpoint = "udp:127.0.0.1:14540";  //!< the autopilot: setpoints go there, replies come back on the same socket
+  // The autopilot: setpoints go there, replies come back to the same socket. PX4 SITL's offboard link listens on
+  // 14580 (and answers whoever sent to it); 14540 is where it would send unsolicited.
+  std::string endpoint = "udp:127.0.0.1:14580";
   int system_id = 255;                //!< our MAVLink system id (a ground-station-like companion)
   int component_id = 191;             //!< MAV_COMP_ID_ONBOARD_COMPUTER
   int target_system = 1;              //!< the autopilot's system id
   int target_component = 1;           //!< the autopilot's component id
   double heartbeat_hz = 1.0;          //!< our HEARTBEAT rate
+  bool px4_offboard_on_engage = true; //!< on ENGAGE, ask PX4 for OFFBOARD mode (MAV_CMD_DO_SET_MODE)
 
   template <class V>
   void visit(V& v) {
@@ -74,6 +92,7 @@ struct MavlinkParams {
     v("target_system", target_system, 0, 255, "autopilot system id");
     v("target_component", target_component, 0, 255, "autopilot component id");
     v("heartbeat_hz", heartbeat_hz, 0.2, 10.0, "HEARTBEAT rate, Hz");
+    v("px4_offboard_on_engage", px4_offboard_on_engage, "on ENGAGE send DO_SET_MODE PX4 OFFBOARD");
   }
 };
 

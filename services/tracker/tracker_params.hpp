@@ -31,7 +31,17 @@ struct DsstParams {
   int cell_size = 4;                  //!< FHOG cell, pixels
   int number_of_scales = 33;          //!< S, scale filter length
   double scale_step = 1.02;           //!< a, ratio between neighbouring scales
-  double scale_sigma_factor = 0.25;   //!< scale Gaussian σ = factor × number_of_scales
+  double scale_sigma_factor = 0.25;   //!< scale Gaussian σ = factor × number_of_scales / sqrt(33) (DSST code)
+  // Speed bounds (not in the paper; fDSST and KCF do the same): the target is modelled at a resolution where
+  // its area is at most max_model_area pixels (so the padded search window is at most 4× that, ~25x25 FHOG
+  // cells), and a small target is enlarged to at least min_model_area so that it still spans a few cells.
+  double max_model_area = 2500.0;     //!< target area at the model's resolution, pixels (upper bound)
+  double min_model_area = 1200.0;     //!< target area at the model's resolution, pixels (lower bound)
+  double scale_model_max_area = 512.0;  //!< scale samples are resized to at most this area (DSST code: 512)
+  int psr_exclude_cells = 2;          //!< PSR sidelobe excludes a (2k+1)^2-cell square around the peak
+  // The DSST code samples the frame again at the new estimate to learn; learning from the samples the
+  // estimate was found in, with the labels centred on the estimate, halves the cost (see the eval note).
+  bool reuse_detection_samples = true;
 
   template <class V>
   void visit(V& v) {
@@ -42,7 +52,12 @@ struct DsstParams {
     v("cell_size", cell_size, 1, 16, "FHOG cell size, pixels (paper 4)");
     v("number_of_scales", number_of_scales, 1, 129, "scales in the scale filter (paper 33)");
     v("scale_step", scale_step, 1.001, 1.5, "ratio between neighbouring scales (paper 1.02)");
-    v("scale_sigma_factor", scale_sigma_factor, 1e-3, 4.0, "scale Gaussian sigma / number of scales (paper 1/4)");
+    v("scale_sigma_factor", scale_sigma_factor, 1e-3, 4.0, "scale Gaussian sigma = factor x scales / sqrt(33) (paper 1/4)");
+    v("max_model_area", max_model_area, 100.0, 1e6, "target area at model resolution, upper bound, pixels");
+    v("min_model_area", min_model_area, 16.0, 1e6, "target area at model resolution, lower bound, pixels");
+    v("scale_model_max_area", scale_model_max_area, 16.0, 1e5, "scale sample area bound, pixels (DSST 512)");
+    v("psr_exclude_cells", psr_exclude_cells, 0, 20, "PSR: half-width of the peak square left out, cells");
+    v("reuse_detection_samples", reuse_detection_samples, "learn from the detection samples (false: sample again, as DSST)");
   }
 };
 

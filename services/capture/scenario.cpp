@@ -1,0 +1,301 @@
+// Scenario files: parsing, checking (every error names the file and the key) and the smooth script.
+#include "scenario.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "gpilot/ground_truth_t.hpp"
+#include "paths.hpp"
+#include "person_figure.hpp"
+
+namespace gpilot {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+const char* const kGestureNames[] = {"REST", "OUT", "UP", "DOWN", "CLOSER", "FURTHER"};
+static_assert(ground_truth_t::GESTURE_REST == 0 && ground_truth_t::GESTURE_OUT == 1 && ground_truth_t::GESTURE_UP == 2 &&
+                  ground_truth_t::GESTURE_DOWN == 3 && ground_truth_t::GESTURE_CLOSER == 4 &&
+                  ground_truth_t::GESTURE_FURTHER == 5,
+              "kGestureNames follows ground_truth_t::GESTURE_*");
+
+class Reader {
+ public:
+  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
+    throw ScenarioError(origin_ + ": " + key + ": " + why);
+  }
+
+  double number(const YAML::Node& n, const std::string& key, double min, double max) const {
+    double v = 0.0;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(key, "not a number");
+    }
+    if (!std::isfinite(v) || v < min || v > max)
+      fail(key, "value " + n.Scalar() + " outside [" + fmt(min) + ", " + fmt(max) + "]");
+    return v;
+  }
+
+  void opt(const YAML::Node& map, const char* name, const std::string& ctx, double& out, double min, double max) const {
+    if (const YAML::Node n = map[name]) out = number(n, ctx + "." + name, min, max);
+  }
+
+  std::string text(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(key, "not a string");
+    return n.Scalar();
+  }
+
+  std::array<int, 3> colour(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsSequence() || n.size() != 3) fail(key, "a colour is [b, g, r]");
+    std::array<int, 3> c{};
+    for (size_t i = 0; i < 3; ++i) c[i] = static_cast<int>(number(n[i], key, 0, 255));
+    return c;
+  }
+
+  void only(const YAML::Node& map, const std::string& ctx, std::initializer_list<const char*> keys) const {
+    if (!map.IsMap()) fail(ctx, "must be a map");
+    for (const auto& kv : map) {
+      const std::string k = kv.first.Scalar();
+      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return k == a; }))
+        fail(ctx.empty() ? k : ctx + "." + k, "unknown key");
+    }
+  }
+
+  static std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+ private:
+  std::string origin_;
+};
+
+ArmPose read_arm(const Reader& r, const YAML::Node& n, const std::string& key, const ArmPose& previous) {
+  try {
+    if (n.IsScalar()) return ArmPose::preset(n.Scalar());
+  } catch (const ScenarioError& e) {
+    r.fail(key, e.what());
+  }
+  r.only(n, key, {"preset", "angle_deg", "extension", "forward_deg", "hand"});
+  if (const YAML::Node h = n["hand"]) {
+    if (n.size() != 1) r.fail(key, "`hand` cannot be combined with other keys");
+    if (!h.IsSequence() || h.size() != 3) r.fail(key + ".hand", "is [out, up, forward] metres");
+    return ArmPose::from_hand_offset(r.number(h[0], key + ".hand", -2, 2), r.number(h[1], key + ".hand", -2, 2),
+                                     r.number(h[2], key + ".hand", -2, 2));
+  }
+  ArmPose p = previous;
+  if (const YAML::Node pre = n["preset"]) {
+    try {
+      p = ArmPose::preset(r.text(pre, key + ".preset"));
+    } catch (const ScenarioError& e) {
+      r.fail(key + ".preset", e.what());
+    }
+  }
+  r.opt(n, "angle_deg", key, p.angle_deg, -180, 200);
+  r.opt(n, "extension", key, p.extension, 0.3, 1.0);
+  r.opt(n, "forward_deg", key, p.forward_deg, -30, 90);
+  return p;
+}
+
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+double mix(double a, double b, double w) { return a + (b - a) * w; }
+
+ArmPose mix(const ArmPose& a, const ArmPose& b, double w) {
+  return {mix(a.angle_deg, b.angle_deg, w), mix(a.extension, b.extension, w), mix(a.forward_deg, b.forward_deg, w)};
+}
+
+ScenarioState mix(const ScenarioState& a, const ScenarioState& b, double w) {
+  ScenarioState s = w >= 0.5 ? b : a;  // discrete values switch half-way
+  s.right_arm = mix(a.right_arm, b.right_arm, w);
+  s.left_arm = mix(a.left_arm, b.left_arm, w);
+  s.step_m = mix(a.step_m, b.step_m, w);
+  s.light = mix(a.light, b.light, w);
+  s.shake_deg = mix(a.shake_deg, b.shake_deg, w);
+  s.noise_sigma = mix(a.noise_sigma, b.noise_sigma, w);
+  s.blur_px = mix(a.blur_px, b.blur_px, w);
+  return s;
+}
+
+double progress(const Keyframe& k, double t) {
+  return k.transition_s <= 0.0 ? (t >= k.t_s ? 1.0 : 0.0) : smoothstep((t - k.t_s) / k.transition_s);
+}
+
+}  // namespace
+
+ArmPose ArmPose::preset(const std::string& name) {
+  if (name == "rest") return {0.0, 1.0, 6.0};
+  if (name == "out") return {90.0, 1.0, 0.0};
+  if (name == "up") return {160.0, 0.9, 0.0};  // bent a little: the hand stays in the hands stage's search rectangle
+  if (name == "down") return {30.0, 1.0, 0.0};
+  // In front of the chest (above the body centre) and in front of the belly (below it), near the midline.
+  if (name == "front_high") return from_hand_offset(-0.14, -0.14, 0.30);
+  if (name == "front_low") return from_hand_offset(-0.14, -0.30, 0.18);
+  throw ScenarioError("unknown arm preset '" + name + "' (rest, out, up, down, front_high, front_low)");
+}
+
+ArmPose ArmPose::from_hand_offset(double out, double up, double forward) {
+  const double r = std::sqrt(out * out + up * up + forward * forward);
+  ArmPose p;
+  p.extension = std::clamp(r / FigureDims{}.arm_length(), 0.3, 1.0);
+  p.forward_deg = r > 0 ? std::asin(std::clamp(forward / r, -1.0, 1.0)) / kDeg : 0.0;
+  p.angle_deg = std::atan2(out, -up) / kDeg;
+  return p;
+}
+
+int gesture_from_name(const std::string& name) {
+  for (int i = 0; i < 6; ++i)
+    if (name == kGestureNames[i]) return i;
+  return -1;
+}
+
+const char* gesture_name(int gesture) { return gesture >= 0 && gesture < 6 ? kGestureNames[gesture] : "?"; }
+
+Scenario Scenario::load(const std::string& path_or_name) {
+  std::string path = path_or_name;
+  const bool bare = path.find('/') == std::string::npos && path.find('.') == std::string::npos;
+  if (bare) path = "deploy/scenarios/" + path + ".yaml";
+  path = resolve_project_path(path);
+  std::ifstream in(path);
+  if (!in) throw ScenarioError("cannot open scenario '" + path_or_name + "' (" + path + ")");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse(ss.str(), path);
+}
+
+Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
+  const Reader r(origin);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(origin + ": not valid YAML: " + e.what());
+  }
+  r.only(root, "", {"name", "description", "duration_s", "background", "background_grade", "transition_s", "camera",
+                    "person", "distractor", "keyframes"});
+  Scenario s;
+  s.origin_ = origin;
+  if (root["name"]) s.name_ = r.text(root["name"], "name");
+  if (root["description"]) s.description_ = r.text(root["description"], "description");
+  if (root["background"]) s.background_ = r.text(root["background"], "background");
+  if (const YAML::Node g = root["background_grade"]) {
+    r.only(g, "background_grade", {"saturation", "red_gain", "blue_gain"});
+    r.opt(g, "saturation", "background_grade", s.grade_.saturation, 0.0, 2.0);
+    r.opt(g, "red_gain", "background_grade", s.grade_.red_gain, 0.0, 4.0);
+    r.opt(g, "blue_gain", "background_grade", s.grade_.blue_gain, 0.0, 4.0);
+  }
+  double transition = 1.0;
+  r.opt(root, "transition_s", "", transition, 0.0, 600.0);
+
+  if (const YAML::Node c = root["camera"]) {
+    r.only(c, "camera", {"north", "east", "down", "yaw_deg"});
+    double yaw_deg = 0.0;
+    r.opt(c, "north", "camera", s.camera_.north, -1e4, 1e4);
+    r.opt(c, "east", "camera", s.camera_.east, -1e4, 1e4);
+    r.opt(c, "down", "camera", s.camera_.down, -1e4, 1e4);
+    r.opt(c, "yaw_deg", "camera", yaw_deg, -360, 360);
+    s.camera_.yaw = yaw_deg * kDeg;
+  }
+  // Default: the person stands 3 m in front of the camera, facing it.
+  s.person_.north = s.camera_.north + 3.0 * std::cos(s.camera_.yaw);
+  s.person_.east = s.camera_.east + 3.0 * std::sin(s.camera_.yaw);
+  bool facing_given = false;
+  if (const YAML::Node p = root["person"]) {
+    r.only(p, "person", {"north", "east", "facing_yaw_deg", "skin_tone", "shirt_bgr", "trousers_bgr"});
+    r.opt(p, "north", "person", s.person_.north, -1e4, 1e4);
+    r.opt(p, "east", "person", s.person_.east, -1e4, 1e4);
+    if (const YAML::Node f = p["facing_yaw_deg"]) {
+      s.person_.facing_yaw = r.number(f, "person.facing_yaw_deg", -360, 360) * kDeg;
+      facing_given = true;
+    }
+    if (p["skin_tone"]) s.person_.skin_tone = r.text(p["skin_tone"], "person.skin_tone");
+    if (p["shirt_bgr"]) s.person_.shirt_bgr = r.colour(p["shirt_bgr"], "person.shirt_bgr");
+    if (p["trousers_bgr"]) s.person_.trousers_bgr = r.colour(p["trousers_bgr"], "person.trousers_bgr");
+  }
+  if (!facing_given)
+    s.person_.facing_yaw = std::atan2(s.camera_.east - s.person_.east, s.camera_.north - s.person_.north);
+  if (const YAML::Node d = root["distractor"]) {
+    r.only(d, "distractor", {"left", "up", "behind", "radius"});
+    r.opt(d, "left", "distractor", s.distractor_.left, -50, 50);
+    r.opt(d, "up", "distractor", s.distractor_.up, -5, 50);
+    r.opt(d, "behind", "distractor", s.distractor_.behind, 0.2, 100);
+    r.opt(d, "radius", "distractor", s.distractor_.radius, 0.01, 5);
+  }
+
+  const YAML::Node keys = root["keyframes"];
+  if (!keys || !keys.IsSequence() || keys.size() == 0) r.fail("keyframes", "a non-empty list is required");
+  ScenarioState state;
+  state.right_arm = state.left_arm = ArmPose::preset("rest");
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const std::string ctx = "keyframes[" + std::to_string(i) + "]";
+    const YAML::Node k = keys[i];
+    r.only(k, ctx, {"t", "transition_s", "gesture", "right_arm", "left_arm", "step_m", "light", "shake_deg",
+                    "noise_sigma", "blur_px", "jpeg_quality", "distractor"});
+    Keyframe kf;
+    if (!k["t"]) r.fail(ctx + ".t", "missing");
+    kf.t_s = r.number(k["t"], ctx + ".t", 0, 1e6);
+    if (!s.keyframes_.empty() && kf.t_s <= s.keyframes_.back().t_s) r.fail(ctx + ".t", "times must increase");
+    kf.transition_s = transition;
+    r.opt(k, "transition_s", ctx, kf.transition_s, 0.0, 600.0);
+    if (const YAML::Node g = k["gesture"]) {
+      state.gesture = gesture_from_name(r.text(g, ctx + ".gesture"));
+      if (state.gesture < 0) r.fail(ctx + ".gesture", "one of REST OUT UP DOWN CLOSER FURTHER");
+    }
+    if (k["right_arm"]) state.right_arm = read_arm(r, k["right_arm"], ctx + ".right_arm", state.right_arm);
+    if (k["left_arm"]) state.left_arm = read_arm(r, k["left_arm"], ctx + ".left_arm", state.left_arm);
+    r.opt(k, "step_m", ctx, state.step_m, -20, 20);
+    r.opt(k, "light", ctx, state.light, 0.05, 4.0);
+    r.opt(k, "shake_deg", ctx, state.shake_deg, 0, 10);
+    r.opt(k, "noise_sigma", ctx, state.noise_sigma, 0, 64);
+    r.opt(k, "blur_px", ctx, state.blur_px, 0, 64);
+    if (const YAML::Node q = k["jpeg_quality"]) state.jpeg_quality = static_cast<int>(r.number(q, ctx + ".jpeg_quality", 0, 100));
+    if (const YAML::Node d = k["distractor"]) {
+      try {
+        state.distractor = d.as<bool>();
+      } catch (const YAML::Exception&) {
+        r.fail(ctx + ".distractor", "true or false");
+      }
+    }
+    kf.state = state;
+    s.keyframes_.push_back(kf);
+  }
+  const Keyframe& last = s.keyframes_.back();
+  s.duration_s_ = last.t_s + last.transition_s + 2.0;
+  r.opt(root, "duration_s", "", s.duration_s_, 0.04, 1e6);
+  return s;
+}
+
+ScenarioState Scenario::state_at(double t_s) const {
+  // Each keyframe starts from wherever the previous one had got to when it began.
+  ScenarioState from = keyframes_.front().state;
+  for (size_t k = 1; k < keyframes_.size(); ++k) {
+    if (t_s < keyframes_[k].t_s) return mix(from, keyframes_[k - 1].state, k == 1 ? 1.0 : progress(keyframes_[k - 1], t_s));
+    const ScenarioState reached = k == 1 ? from : mix(from, keyframes_[k - 1].state, progress(keyframes_[k - 1], keyframes_[k].t_s));
+    from = reached;
+  }
+  const size_t n = keyframes_.size();
+  return n == 1 ? from : mix(from, keyframes_.back().state, progress(keyframes_.back(), t_s));
+}
+
+std::vector<double> Scenario::key_times() const {
+  std::vector<double> out;
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    const double arrive = k == 0 ? keyframes_[k].t_s : keyframes_[k].t_s + keyframes_[k].transition_s;
+    const double next = k + 1 < keyframes_.size() ? keyframes_[k + 1].t_s : duration_s_;
+    out.push_back(std::min(next, std::max(arrive, 0.5 * (arrive + next))));
+  }
+  return out;
+}
+
+}  // namespace gpilot

@@ -1,0 +1,55 @@
+// MavlinkSession: gpilot's side of a MAVLink link, without the socket. Builds the frames we send (HEARTBEAT,
+// SET_POSITION_TARGET_LOCAL_NED in MAV_FRAME_BODY_NED, COMMAND_LONG) and turns the autopilot's HEARTBEAT,
+// LOCAL_POSITION_NED, ATTITUDE and EXTENDED_SYS_STATE into a VehicleState.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "../flight_params.hpp"
+#include "../flight_types.hpp"
+#include "frame.hpp"
+#include "messages.hpp"
+
+namespace gpilot::mavlink {
+
+class MavlinkSession {
+ public:
+  explicit MavlinkSession(const MavlinkParams& params);
+
+  std::vector<uint8_t> heartbeat();
+  // Velocity (body FRD, m/s) and yaw rate only; now_utime sets time_boot_ms (ms since the session's first frame).
+  std::vector<uint8_t> setpoint(const Setpoint& sp, int64_t now_utime);
+  std::vector<uint8_t> command_long(uint16_t command, const float (&param)[7]);
+  std::vector<uint8_t> arm(bool on);
+  std::vector<uint8_t> takeoff(float altitude_m);  // above the take-off point is the autopilot's business: param7
+  std::vector<uint8_t> land();
+  std::vector<uint8_t> px4_offboard();
+
+  // One received datagram: the latest vehicle state if a LOCAL_POSITION_NED from the target system was in it.
+  std::optional<VehicleState> on_datagram(const uint8_t* data, size_t n, int64_t receive_utime);
+
+  const FrameParser& parser() const { return parser_; }
+  int64_t other_system() const { return other_system_; }  //!< valid frames from another system id, ignored
+  bool heard_autopilot() const { return heard_; }
+  std::optional<CommandAck> last_ack() const { return last_ack_; }
+
+ private:
+  template <class M>
+  std::vector<uint8_t> frame(const M& m);
+  uint32_t boot_ms(int64_t now_utime);
+
+  MavlinkParams params_;
+  FrameParser parser_;
+  uint8_t seq_ = 0;
+  bool have_boot_ = false;
+  int64_t boot_utime_ = 0;
+  VehicleState state_;
+  int64_t state_seq_ = 0;
+  int64_t other_system_ = 0;
+  bool heard_ = false;
+  std::optional<CommandAck> last_ack_;
+};
+
+}  // namespace gpilot::mavlink

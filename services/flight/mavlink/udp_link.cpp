@@ -1,0 +1,77 @@
+// UdpLink: a plain IPv4 datagram socket, non-blocking receive.
+#include "udp_link.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace gpilot::mavlink {
+
+Endpoint parse_endpoint(const std::string& text) {
+  const std::string prefix = "udp:";
+  if (text.compare(0, prefix.size(), prefix) != 0)
+    throw std::invalid_argument("MAVLink endpoint '" + text + "' must be udp:HOST:PORT");
+  const std::string rest = text.substr(prefix.size());
+  const size_t colon = rest.rfind(':');
+  if (colon == std::string::npos || colon == 0)
+    throw std::invalid_argument("MAVLink endpoint '" + text + "' must be udp:HOST:PORT");
+  Endpoint e;
+  e.host = rest.substr(0, colon);
+  const std::string port = rest.substr(colon + 1);
+  if (port.empty() || port.find_first_not_of("0123456789") != std::string::npos || port.size() > 5 ||
+      std::stoi(port) < 1 || std::stoi(port) > 65535)
+    throw std::invalid_argument("MAVLink endpoint '" + text + "': port must be 1..65535");
+  e.port = std::stoi(port);
+  return e;
+}
+
+UdpLink::UdpLink(const Endpoint& endpoint) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_DGRAM;
+  addrinfo* res = nullptr;
+  const int rc = getaddrinfo(endpoint.host.c_str(), std::to_string(endpoint.port).c_str(), &hints, &res);
+  if (rc != 0 || !res)
+    throw std::runtime_error("MAVLink endpoint host '" + endpoint.host + "': " + gai_strerror(rc));
+  addr_.assign(reinterpret_cast<const uint8_t*>(res->ai_addr),
+               reinterpret_cast<const uint8_t*>(res->ai_addr) + res->ai_addrlen);
+  freeaddrinfo(res);
+  fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) throw std::runtime_error(std::string("MAVLink UDP socket: ") + std::strerror(errno));
+}
+
+UdpLink::~UdpLink() {
+  if (fd_ >= 0) close(fd_);
+}
+
+bool UdpLink::send(const std::vector<uint8_t>& bytes) {
+  const ssize_t n = sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(addr_.data()),
+                           static_cast<socklen_t>(addr_.size()));
+  // An autopilot that is not up yet answers with ICMP unreachable (ECONNREFUSED on a later call): counted,
+  // and the link keeps trying.
+  if (n != static_cast<ssize_t>(bytes.size())) {
+    ++send_errors_;
+    return false;
+  }
+  return true;
+}
+
+bool UdpLink::receive(std::vector<uint8_t>& buf) {
+  buf.resize(65536);
+  const ssize_t n = recv(fd_, buf.data(), buf.size(), 0);
+  if (n < 0) {
+    buf.clear();
+    return false;
+  }
+  buf.resize(static_cast<size_t>(n));
+  return true;
+}
+
+}  // namespace gpilot::mavlink

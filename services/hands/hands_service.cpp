@@ -1,0 +1,103 @@
+// The hands stage on a bus, used by gpilot-hands (live LCM) and gpilot-replay (a log through memq://).
+// Reads CAMERA (gpilot.image_t, BGR8 or JPEG) and USER_TRACK (gpilot.user_track_t), pairs them by seq,
+// and writes HAND_OBS (gpilot.hand_obs_t) for each pair: the paper's Alg. 1 (stretched-out hand, vector
+// from the shoulder centre) else Alg. 2 (hand in front of the body, vector from the body centre) else NONE.
+// A frame or track that never meets its partner is dropped and counted (HEALTH rejected); a track that
+// is not TRACKING gives NONE; a track made on a frame of another size is rejected.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "bus_node.hpp"
+#include "hands/hands_service.hpp"
+#include "hands/hand_detector.hpp"
+#include "hands/hands_params.hpp"
+#include "hands/seq_pairer.hpp"
+#include "image_codec.hpp"
+#include "paths.hpp"
+
+namespace gpilot {
+
+namespace {
+
+void copy_rect(float* out, const cv::Rect& r) {
+  out[0] = static_cast<float>(r.x);
+  out[1] = static_cast<float>(r.y);
+  out[2] = static_cast<float>(r.width);
+  out[3] = static_cast<float>(r.height);
+}
+
+hand_obs_t observe(HandDetector& detector, const image_t& frame, const user_track_t& track, const cv::Mat& bgr) {
+  hand_obs_t obs{};
+  obs.utime = frame.utime;
+  obs.seq = frame.seq;
+  obs.track_id = track.track_id;
+  obs.track_status = track.status;
+  for (int i = 0; i < 4; ++i) obs.user_box[i] = track.box[i];
+  obs.image_width = bgr.cols;
+  obs.image_height = bgr.rows;
+  obs.kind = hand_obs_t::KIND_NONE;
+  const cv::Rect2f box(track.box[0], track.box[1], track.box[2], track.box[3]);
+  HandResult r;
+  if (track.status == user_track_t::STATUS_TRACKING)
+    r = detector.detect(bgr, box);
+  else
+    r.geometry = hand_geometry(detector.params(), box, bgr.size());
+  obs.shoulder_centre[0] = r.geometry.shoulder_centre.x;
+  obs.shoulder_centre[1] = r.geometry.shoulder_centre.y;
+  obs.body_centre[0] = r.geometry.body_centre.x;
+  obs.body_centre[1] = r.geometry.body_centre.y;
+  obs.kind = static_cast<int8_t>(r.kind);
+  obs.vector[0] = r.vector.x;
+  obs.vector[1] = r.vector.y;
+  copy_rect(obs.hand_box, r.hand_box);
+  obs.hand_skin = r.hand_skin;
+  obs.skin_outside = r.skin_outside;
+  obs.skin_inside = r.skin_inside;
+  return obs;
+}
+
+}  // namespace
+
+
+std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
+  struct State {
+    State(const HandsParams& p, const std::string& model)
+        : detector(p, SkinClassifier(SkinModel::load(model), p.skin.threshold)), pairer(p.match_window) {}
+    HandDetector detector;
+    SeqPairer<image_t, user_track_t> pairer;
+    int64_t frames_dropped = 0, tracks_dropped = 0;
+  };
+  const auto params = config.section<HandsParams>("hands");
+  const std::string model_path = resolve_project_path(params.skin.model);
+  auto state = std::make_shared<State>(params, model_path);
+  auto& detector = state->detector;
+  auto& pairer = state->pairer;
+  auto& frames_dropped = state->frames_dropped;
+  auto& tracks_dropped = state->tracks_dropped;
+
+  auto handle = [&node, &detector, &pairer, &frames_dropped, &tracks_dropped, model_path](std::optional<std::pair<image_t, user_track_t>> pair) {
+    for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
+      node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
+    for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
+      node.reject("USER_TRACK without a CAMERA frame of the same seq (dropped after hands.match_window seqs)");
+    if (!pair) return;
+    const auto& [frame, track] = *pair;
+    cv::Mat bgr;
+    const std::string why = image_to_mat(frame, bgr);
+    if (!why.empty()) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": " + why);
+    if (bgr.type() != CV_8UC3) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8");
+    if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
+      return node.reject("USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) +
+                         "x" + std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
+                         std::to_string(bgr.rows));
+    node.publish("HAND_OBS", observe(detector, frame, track, bgr));
+    node.set_state(health_t::STATE_OK, "skin model " + model_path);
+  };
+  node.subscribe<image_t>("CAMERA", [handle, &pairer](const image_t& m, int64_t) { handle(pairer.add_frame(m.seq, m)); });
+  node.subscribe<user_track_t>("USER_TRACK", [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
+  node.set_state(health_t::STATE_DEGRADED, "waiting for CAMERA and USER_TRACK");
+  return state;
+}
+
+}  // namespace gpilot

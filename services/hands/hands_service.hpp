@@ -1,0 +1,14 @@
+// Wires the hands stage to a bus (see hands_service.cpp). The returned object holds the stage's state;
+// keep it alive while the bus runs.
+#pragma once
+
+#include <memory>
+
+#include "bus_node.hpp"
+#include "config.hpp"
+
+namespace gpilot {
+
+std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node);
+
+}  // namespace gpilot

@@ -1,0 +1,387 @@
+// DSST translation and scale filters (see dsst.hpp). Conventions: a pixel i covers [i, i+1) in continuous
+// frame coordinates, so a box's centre is x + w/2 and a crop resized by cv::resize maps u -> x0 + u * f.
+#include "dsst.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+namespace gpilot {
+namespace {
+
+constexpr int kGreyChannel = Fhog::kChannels;  // channel 31 of the translation features
+constexpr int kTranslationChannels = Fhog::kChannels + 1;
+
+std::vector<float> hann(int n) {
+  std::vector<float> w(static_cast<size_t>(n), 1.0f);
+  if (n > 1)
+    for (int i = 0; i < n; ++i)
+      w[static_cast<size_t>(i)] = static_cast<float>(0.5 * (1.0 - std::cos(2.0 * M_PI * i / (n - 1))));
+  return w;
+}
+
+// Copies the integer rectangle r of frame into out, replicating the border where r leaves the frame.
+void crop_replicate(const cv::Mat& frame, const cv::Rect& r, cv::Mat& out) {
+  const cv::Rect inside = r & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (inside == r) {
+    out = frame(r);
+    return;
+  }
+  // The track centre is kept inside the frame, so the crop always overlaps it.
+  CV_Assert(inside.area() > 0);
+  cv::copyMakeBorder(frame(inside), out, inside.y - r.y, r.br().y - inside.br().y, inside.x - r.x,
+                     r.br().x - inside.br().x, cv::BORDER_REPLICATE);
+}
+
+void resize_to(const cv::Mat& src, cv::Mat& dst, cv::Size sz) {
+  const bool shrink = sz.width < src.cols || sz.height < src.rows;
+  cv::resize(src, dst, sz, 0, 0, shrink ? cv::INTER_AREA : cv::INTER_LINEAR);
+}
+
+// acc = (1 - rate) acc + rate * G ⊙ conj(F), elementwise over complex (CV_32FC2) arrays of equal size;
+// rate 1 assigns.
+void blend_numerator(cv::Mat& acc, const cv::Mat& g, const cv::Mat& f, float rate) {
+  const int n = f.rows * f.cols;
+  const float* gp = g.ptr<float>();
+  const float* fp = f.ptr<float>();
+  float* ap = acc.ptr<float>();
+  const float keep = 1.0f - rate;
+  for (int i = 0; i < n; ++i) {
+    const float gr = gp[2 * i], gi = gp[2 * i + 1], fr = fp[2 * i], fi = fp[2 * i + 1];
+    ap[2 * i] = keep * ap[2 * i] + rate * (gr * fr + gi * fi);
+    ap[2 * i + 1] = keep * ap[2 * i + 1] + rate * (gi * fr - gr * fi);
+  }
+}
+
+// Sub-cell offset of a peak from three samples around it: a Gaussian fit (exact for the Gaussian-shaped
+// response the filter is trained for) when all three are positive, else a parabola.
+double peak_offset(double a, double b, double c) {
+  if (a > 0 && b > 0 && c > 0) {
+    a = std::log(a);
+    b = std::log(b);
+    c = std::log(c);
+  }
+  const double den = a - 2.0 * b + c;
+  if (den >= 0) return 0.0;
+  return std::clamp(0.5 * (a - c) / den, -0.5, 0.5);
+}
+
+}  // namespace
+
+Dsst::Dsst(const DsstParams& params) : p_(params) {
+  if (p_.cell_size < 1 || p_.number_of_scales < 1 || p_.scale_step <= 1.0 || p_.lambda <= 0 ||
+      p_.max_model_area < p_.min_model_area)
+    throw std::invalid_argument("Dsst: invalid parameters");
+}
+
+DsstEstimate Dsst::estimate() const {
+  DsstEstimate e;
+  const cv::Size2d sz(base_size_.width * scale_, base_size_.height * scale_);
+  e.box = cv::Rect2d(pos_.x - sz.width / 2, pos_.y - sz.height / 2, sz.width, sz.height);
+  e.psr = psr_;
+  e.scale = scale_;
+  return e;
+}
+
+void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
+  initialized_ = false;
+  check_frame(frame, "Dsst::init");
+  const cv::Point2d c(box.x + box.width / 2, box.y + box.height / 2);
+  if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height) ||
+      box.width < 2 || box.height < 2 || c.x < 0 || c.y < 0 || c.x >= frame.cols || c.y >= frame.rows)
+    throw std::invalid_argument("Dsst::init: box must be at least 2x2 pixels with its centre inside the frame");
+
+  const int cell = p_.cell_size;
+  frame_size_ = frame.size();
+  pos_ = c;
+  base_size_ = box.size();
+  scale_ = 1.0;
+  psr_ = 0.0;
+
+  const double area = box.area();
+  model_factor_ = 1.0;
+  if (area > p_.max_model_area) model_factor_ = std::sqrt(p_.max_model_area / area);
+  if (area < p_.min_model_area) model_factor_ = std::sqrt(p_.min_model_area / area);
+  window_frame_ = cv::Size2d(box.width * (1.0 + p_.padding), box.height * (1.0 + p_.padding));
+  cells_ = cv::Size(cv::getOptimalDFTSize(std::max(4, static_cast<int>(std::lround(window_frame_.width * model_factor_ / cell)))),
+                    cv::getOptimalDFTSize(std::max(4, static_cast<int>(std::lround(window_frame_.height * model_factor_ / cell)))));
+  sigma_cells_ = std::sqrt(area) * model_factor_ * p_.output_sigma_factor / cell;
+
+  const auto wx = hann(cells_.width), wy = hann(cells_.height);
+  cos_window_.create(cells_, CV_32F);
+  for (int y = 0; y < cells_.height; ++y)
+    for (int x = 0; x < cells_.width; ++x)
+      cos_window_.at<float>(y, x) = wy[static_cast<size_t>(y)] * wx[static_cast<size_t>(x)];
+
+  // Scale filter: factors a^n, n = -(S-1)/2 .. (S-1)/2, label peaked at n = 0. σ follows the DSST code
+  // (scale_sigma = nScales / sqrt(33) * scale_sigma_factor): 1.44 scales for the published 33 and 1/4.
+  const int S = p_.number_of_scales;
+  const int mid = (S - 1) / 2;
+  scale_factors_.resize(static_cast<size_t>(S));
+  for (int i = 0; i < S; ++i) scale_factors_[static_cast<size_t>(i)] = std::pow(p_.scale_step, i - mid);
+  scale_window_ = S % 2 == 0 ? hann(S + 1) : hann(S);
+  if (S % 2 == 0) scale_window_.erase(scale_window_.begin());
+  if (S == 1) scale_window_.assign(1, 1.0f);
+  const double scale_sigma = S / std::sqrt(33.0) * p_.scale_sigma_factor;
+  scale_labels_f_.resize(static_cast<size_t>(S));
+  for (int c = 0; c < S; ++c) {
+    cv::Mat ys(1, S, CV_32F);
+    for (int i = 0; i < S; ++i)
+      ys.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * (i - c) * (i - c) / (scale_sigma * scale_sigma)));
+    cv::dft(ys, scale_labels_f_[static_cast<size_t>(c)], cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+  }
+  const double sf = area > p_.scale_model_max_area ? std::sqrt(p_.scale_model_max_area / area) : 1.0;
+  scale_model_sz_ = cv::Size(std::max(2 * cell, static_cast<int>(box.width * sf)),
+                             std::max(2 * cell, static_cast<int>(box.height * sf)));
+  const double log_a = std::log(p_.scale_step);
+  min_scale_ = std::pow(p_.scale_step,
+                        std::ceil(std::log(std::max(5.0 / window_frame_.width, 5.0 / window_frame_.height)) / log_a));
+  max_scale_ = std::pow(p_.scale_step,
+                        std::floor(std::log(std::min(frame.cols / box.width, frame.rows / box.height)) / log_a));
+  max_scale_ = std::max(max_scale_, 1.0);
+  min_scale_ = std::min(min_scale_, 1.0);
+
+  const Sample s = translation_features(frame, pos_, scale_);
+  learn_translation(s, true);
+  scale_features(frame, pos_, scale_);
+  learn_scale(true, mid);
+  have_detection_ = false;
+  initialized_ = true;
+}
+
+Dsst::Sample Dsst::translation_features(const cv::Mat& frame, cv::Point2d pos, double scale) {
+  const int cell = p_.cell_size;
+  const int cw = std::max(1, static_cast<int>(std::lround(window_frame_.width * scale)));
+  const int ch = std::max(1, static_cast<int>(std::lround(window_frame_.height * scale)));
+  const cv::Rect r(static_cast<int>(std::lround(pos.x - cw / 2.0)), static_cast<int>(std::lround(pos.y - ch / 2.0)), cw, ch);
+  crop_replicate(frame, r, crop_);
+  const cv::Size model(cells_.width * cell, cells_.height * cell);
+  resize_to(crop_, patch_, model);
+
+  feats_.resize(kTranslationChannels);
+  fhog_.compute(patch_, cell, feats_, 0);
+  if (patch_.channels() == 3) cv::cvtColor(patch_, grey_, cv::COLOR_BGR2GRAY);
+  cv::resize(patch_.channels() == 3 ? grey_ : patch_, grey_cells_, cells_, 0, 0, cv::INTER_AREA);
+  grey_cells_.convertTo(feats_[kGreyChannel], CV_32F, 1.0 / 255.0, -0.5);
+
+  feats_f_.resize(kTranslationChannels);
+  for (int l = 0; l < kTranslationChannels; ++l) {
+    cv::multiply(feats_[static_cast<size_t>(l)], cos_window_, feats_[static_cast<size_t>(l)]);
+    cv::dft(feats_[static_cast<size_t>(l)], feats_f_[static_cast<size_t>(l)], cv::DFT_COMPLEX_OUTPUT);
+  }
+  return Sample{cv::Point2d(r.x, r.y), cv::Point2d(static_cast<double>(cw) / model.width, static_cast<double>(ch) / model.height)};
+}
+
+void Dsst::gaussian_label(cv::Point2d centre_cells) {
+  label_.create(cells_, CV_32F);
+  const double k = -0.5 / (sigma_cells_ * sigma_cells_);
+  for (int y = 0; y < cells_.height; ++y) {
+    const double dy = y - centre_cells.y;
+    float* row = label_.ptr<float>(y);
+    for (int x = 0; x < cells_.width; ++x) {
+      const double dx = x - centre_cells.x;
+      row[x] = static_cast<float>(std::exp(k * (dx * dx + dy * dy)));
+    }
+  }
+  cv::dft(label_, label_f_, cv::DFT_COMPLEX_OUTPUT);
+}
+
+void Dsst::learn_translation(const Sample& s, bool first) {
+  // The label peaks where the target centre really is in this sample (the crop is rounded to whole
+  // pixels), so the filter learns no half-pixel bias.
+  const double cell = p_.cell_size;
+  gaussian_label(cv::Point2d((pos_.x - s.centre.x) / s.frame_per_model.x / cell - 0.5,
+                             (pos_.y - s.centre.y) / s.frame_per_model.y / cell - 0.5));
+  const float rate = first ? 1.0f : static_cast<float>(p_.learning_rate);
+  num_.resize(kTranslationChannels);
+  if (first) {
+    for (auto& a : num_) a = cv::Mat::zeros(cells_, CV_32FC2);
+    den_ = cv::Mat::zeros(cells_, CV_32F);
+  }
+  const int n = cells_.area();
+  float* d = den_.ptr<float>();
+  for (int i = 0; i < n; ++i) d[i] *= 1.0f - rate;
+  for (int l = 0; l < kTranslationChannels; ++l) {
+    const cv::Mat& f = feats_f_[static_cast<size_t>(l)];
+    blend_numerator(num_[static_cast<size_t>(l)], label_f_, f, rate);
+    const float* fp = f.ptr<float>();
+    for (int i = 0; i < n; ++i) d[i] += rate * (fp[2 * i] * fp[2 * i] + fp[2 * i + 1] * fp[2 * i + 1]);
+  }
+}
+
+void Dsst::scale_features(const cv::Mat& frame, cv::Point2d pos, double scale) {
+  const int S = p_.number_of_scales;
+  const double amax = scale_factors_.back();
+  const int cw = std::max(1, static_cast<int>(std::lround(base_size_.width * scale * amax)));
+  const int ch = std::max(1, static_cast<int>(std::lround(base_size_.height * scale * amax)));
+  const cv::Rect r(static_cast<int>(std::lround(pos.x - cw / 2.0)), static_cast<int>(std::lround(pos.y - ch / 2.0)), cw, ch);
+  crop_replicate(frame, r, crop_);
+  // One anti-aliased shrink of the largest sample, then each scale is a bilinear warp of that small image.
+  const cv::Size inter(static_cast<int>(std::ceil(scale_model_sz_.width * amax)),
+                       static_cast<int>(std::ceil(scale_model_sz_.height * amax)));
+  resize_to(crop_, scale_inter_, inter);
+  const double fx = static_cast<double>(inter.width) / cw, fy = static_cast<double>(inter.height) / ch;
+
+  const int cell = p_.cell_size;
+  const int d = Fhog::kChannels * (scale_model_sz_.height / cell) * (scale_model_sz_.width / cell);
+  scale_x_.create(d, S, CV_32F);
+  for (int s = 0; s < S; ++s) {
+    const double a = scale_factors_[static_cast<size_t>(s)];
+    const double kx = base_size_.width * scale * a / scale_model_sz_.width;
+    const double ky = base_size_.height * scale * a / scale_model_sz_.height;
+    const cv::Matx23d m(fx * kx, 0, fx * (pos.x + (0.5 - scale_model_sz_.width / 2.0) * kx - r.x) - 0.5,  //
+                        0, fy * ky, fy * (pos.y + (0.5 - scale_model_sz_.height / 2.0) * ky - r.y) - 0.5);
+    cv::warpAffine(scale_inter_, scale_patch_, m, scale_model_sz_, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                   cv::BORDER_REPLICATE);
+    fhog_.compute(scale_patch_, cell, scale_fhog_, 0);
+    const float w = scale_window_[static_cast<size_t>(s)];
+    int row = 0;
+    for (int c = 0; c < Fhog::kChannels; ++c) {
+      const cv::Mat& m_c = scale_fhog_[static_cast<size_t>(c)];
+      const float* src = m_c.ptr<float>();
+      const int n = m_c.rows * m_c.cols;
+      for (int i = 0; i < n; ++i) scale_x_.at<float>(row++, s) = w * src[i];
+    }
+  }
+  cv::dft(scale_x_, scale_x_f_, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+}
+
+void Dsst::learn_scale(bool first, int label_centre) {
+  const cv::Mat& label_f = scale_labels_f_[static_cast<size_t>(label_centre)];
+  const int S = p_.number_of_scales;
+  const int d = scale_x_f_.rows;
+  const float rate = first ? 1.0f : static_cast<float>(p_.learning_rate);
+  if (first) {
+    scale_num_ = cv::Mat::zeros(d, S, CV_32FC2);
+    scale_den_ = cv::Mat::zeros(1, S, CV_32F);
+  }
+  float* den = scale_den_.ptr<float>();
+  for (int s = 0; s < S; ++s) den[s] *= 1.0f - rate;
+  for (int r = 0; r < d; ++r) {
+    cv::Mat num_row = scale_num_.row(r);
+    const cv::Mat x_row = scale_x_f_.row(r);
+    blend_numerator(num_row, label_f, x_row, rate);
+    const float* xp = x_row.ptr<float>();
+    for (int s = 0; s < S; ++s) den[s] += rate * (xp[2 * s] * xp[2 * s] + xp[2 * s + 1] * xp[2 * s + 1]);
+  }
+}
+
+void Dsst::check_frame(const cv::Mat& frame, const char* who) const {
+  if (frame.empty() || frame.depth() != CV_8U || (frame.channels() != 1 && frame.channels() != 3))
+    throw std::invalid_argument(std::string(who) + ": frame must be a non-empty CV_8UC1 or CV_8UC3 image");
+  if (initialized_ && (frame.cols != frame_size_.width || frame.rows != frame_size_.height))
+    throw std::invalid_argument(std::string(who) + ": frame size differs from the one the track started on");
+}
+
+void Dsst::learn(const cv::Mat& frame) {
+  if (!initialized_) throw std::logic_error("Dsst::learn before init");
+  check_frame(frame, "Dsst::learn");
+  if (p_.reuse_detection_samples && have_detection_) {
+    // The target sits at the estimate inside the detection samples: labels centred there.
+    learn_translation(detection_sample_, false);
+    learn_scale(false, detection_scale_index_);
+  } else {
+    const Sample t = translation_features(frame, pos_, scale_);
+    learn_translation(t, false);
+    scale_features(frame, pos_, scale_);
+    learn_scale(false, (p_.number_of_scales - 1) / 2);
+  }
+  have_detection_ = false;
+}
+
+DsstEstimate Dsst::track(const cv::Mat& frame) {
+  if (!initialized_) throw std::logic_error("Dsst::track before init");
+  check_frame(frame, "Dsst::track");
+  const int cell = p_.cell_size;
+  const float lambda = static_cast<float>(p_.lambda);
+
+  // Translation: y = IDFT(Σ_l A_l Z_l / (B + λ)).
+  const Sample s = translation_features(frame, pos_, scale_);
+  const int n = cells_.area();
+  resp_f_.create(cells_, CV_32FC2);
+  resp_f_.setTo(0);
+  float* rp = resp_f_.ptr<float>();
+  for (int l = 0; l < kTranslationChannels; ++l) {
+    const float* ap = num_[static_cast<size_t>(l)].ptr<float>();
+    const float* zp = feats_f_[static_cast<size_t>(l)].ptr<float>();
+    for (int i = 0; i < n; ++i) {
+      rp[2 * i] += ap[2 * i] * zp[2 * i] - ap[2 * i + 1] * zp[2 * i + 1];
+      rp[2 * i + 1] += ap[2 * i] * zp[2 * i + 1] + ap[2 * i + 1] * zp[2 * i];
+    }
+  }
+  const float* dp = den_.ptr<float>();
+  for (int i = 0; i < n; ++i) {
+    const float inv = 1.0f / (dp[i] + lambda);
+    rp[2 * i] *= inv;
+    rp[2 * i + 1] *= inv;
+  }
+  cv::dft(resp_f_, resp_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+
+  cv::Point peak;
+  double peak_value = 0;
+  cv::minMaxLoc(resp_, nullptr, &peak_value, nullptr, &peak);
+  const int W = cells_.width, H = cells_.height;
+  auto at = [&](int y, int x) { return static_cast<double>(resp_.at<float>((y + H) % H, (x + W) % W)); };
+  const double px = peak.x + peak_offset(at(peak.y, peak.x - 1), peak_value, at(peak.y, peak.x + 1));
+  const double py = peak.y + peak_offset(at(peak.y - 1, peak.x), peak_value, at(peak.y + 1, peak.x));
+
+  // PSR = (peak - mean) / std over the response outside a square around the peak (wrapping).
+  double sum = 0, sum2 = 0;
+  int count = 0;
+  const int k = p_.psr_exclude_cells;
+  for (int y = 0; y < H; ++y) {
+    const int dy = std::min(std::abs(y - peak.y), H - std::abs(y - peak.y));
+    const float* row = resp_.ptr<float>(y);
+    for (int x = 0; x < W; ++x) {
+      const int dx = std::min(std::abs(x - peak.x), W - std::abs(x - peak.x));
+      if (dx <= k && dy <= k) continue;
+      sum += row[x];
+      sum2 += static_cast<double>(row[x]) * row[x];
+      ++count;
+    }
+  }
+  psr_ = 0.0;
+  if (count > 1) {
+    const double mean = sum / count;
+    const double sd = std::sqrt(std::max(sum2 / count - mean * mean, 0.0));
+    psr_ = std::max(0.0, (peak_value - mean) / std::max(sd, 1e-9));
+  }
+  pos_.x = std::clamp(s.centre.x + (px + 0.5) * cell * s.frame_per_model.x, 0.0, frame.cols - 1e-3);
+  pos_.y = std::clamp(s.centre.y + (py + 0.5) * cell * s.frame_per_model.y, 0.0, frame.rows - 1e-3);
+
+  // Scale: the same filter in 1-D over the scale samples at the new position.
+  scale_features(frame, pos_, scale_);
+  const int S = p_.number_of_scales;
+  scale_resp_f_.create(1, S, CV_32FC2);
+  scale_resp_f_.setTo(0);
+  float* sp = scale_resp_f_.ptr<float>();
+  for (int r = 0; r < scale_x_f_.rows; ++r) {
+    const float* ap = scale_num_.ptr<float>(r);
+    const float* zp = scale_x_f_.ptr<float>(r);
+    for (int i = 0; i < S; ++i) {
+      sp[2 * i] += ap[2 * i] * zp[2 * i] - ap[2 * i + 1] * zp[2 * i + 1];
+      sp[2 * i + 1] += ap[2 * i] * zp[2 * i + 1] + ap[2 * i + 1] * zp[2 * i];
+    }
+  }
+  const float* sd = scale_den_.ptr<float>();
+  for (int i = 0; i < S; ++i) {
+    const float inv = 1.0f / (sd[i] + lambda);
+    sp[2 * i] *= inv;
+    sp[2 * i + 1] *= inv;
+  }
+  cv::dft(scale_resp_f_, scale_resp_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
+  cv::Point best;
+  cv::minMaxLoc(scale_resp_, nullptr, nullptr, nullptr, &best);
+  const double new_scale = std::clamp(scale_ * scale_factors_[static_cast<size_t>(best.x)], min_scale_, max_scale_);
+  // The index whose factor is nearest the clamped change is where the target's size sits in the sample.
+  detection_scale_index_ = std::clamp(
+      static_cast<int>(std::lround(std::log(new_scale / scale_) / std::log(p_.scale_step))) + (S - 1) / 2, 0, S - 1);
+  scale_ = new_scale;
+  detection_sample_ = s;
+  have_detection_ = true;
+  return estimate();
+}
+
+}  // namespace gpilot

@@ -1,0 +1,106 @@
+// DSST, the Discriminative Scale Space Tracker (Danelljan, Häger, Khan, Felsberg, BMVC 2014), our own
+// implementation: a multi-channel correlation filter for translation on 31 FHOG channels (4x4 cells) plus
+// grey intensity, then a separate 1-D filter over 33 scales on the FHOG of resized patches (not
+// compressed: d = 31 x cells of the scale model, as in the BMVC paper, not fDSST's PCA). Both filters are
+//   A_l = (1-η) A_l + η G conj(F_l),   B = (1-η) B + η Σ_l |F_l|²,   y = IDFT(Σ_l A_l Z_l / (B + λ))
+// with every transform a real-to-complex cv::dft into buffers kept between frames.
+// No clock, no I/O: frames in, boxes out; the same frames give the same boxes.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "fhog.hpp"
+#include "tracker_params.hpp"
+
+namespace gpilot {
+
+struct DsstEstimate {
+  cv::Rect2d box;       //!< x, y (top-left), width, height, pixels
+  double psr = 0.0;     //!< peak-to-sidelobe ratio of the translation response
+  double scale = 1.0;   //!< size relative to the initial box
+};
+
+class Dsst {
+ public:
+  explicit Dsst(const DsstParams& params);
+
+  // Starts a track on box (pixels, at least 2x2, centre inside the frame). frame: CV_8UC3 or CV_8UC1.
+  // Throws std::invalid_argument for an empty frame or a box it cannot track.
+  void init(const cv::Mat& frame, const cv::Rect2d& box);
+
+  // Finds the target in frame: translation, then scale at the new position. The model is not changed.
+  DsstEstimate track(const cv::Mat& frame);
+  // Updates both filters with samples of frame at the current estimate (rate η).
+  void learn(const cv::Mat& frame);
+  // The published tracker: track, then learn, every frame.
+  DsstEstimate update(const cv::Mat& frame) {
+    const DsstEstimate e = track(frame);
+    learn(frame);
+    return e;
+  }
+
+  bool initialized() const { return initialized_; }
+  DsstEstimate estimate() const;
+  const DsstParams& params() const { return p_; }
+
+ private:
+  // A crop of the frame resized to the model window: where its centre is and how many frame pixels one
+  // model pixel spans (they differ from the asked ones by the rounding of the crop to whole pixels).
+  struct Sample {
+    cv::Point2d centre;
+    cv::Point2d frame_per_model;
+  };
+  Sample translation_features(const cv::Mat& frame, cv::Point2d pos, double scale);
+  void scale_features(const cv::Mat& frame, cv::Point2d pos, double scale);
+  void learn_translation(const Sample& s, bool first);
+  void learn_scale(bool first, int label_centre);
+  void gaussian_label(cv::Point2d centre_cells);
+  void check_frame(const cv::Mat& frame, const char* who) const;
+
+  DsstParams p_;
+  bool initialized_ = false;
+  Fhog fhog_;
+
+  // Track state.
+  cv::Size frame_size_;
+  cv::Point2d pos_;          // target centre, frame pixels
+  cv::Size2d base_size_;     // target size at scale 1, frame pixels
+  double scale_ = 1.0;
+  double min_scale_ = 0.0, max_scale_ = 0.0;
+  double psr_ = 0.0;
+
+  // Translation model: the window (target × (1 + padding)) at model resolution.
+  double model_factor_ = 1.0;  // model pixels per frame pixel at scale 1
+  cv::Size cells_;             // window in cells (DFT size)
+  cv::Size2d window_frame_;    // window in frame pixels at scale 1
+  double sigma_cells_ = 1.0;
+  cv::Mat cos_window_;         // CV_32F, cells_
+  std::vector<cv::Mat> num_;   // A_l, CV_32FC2
+  cv::Mat den_;                // B, CV_32F
+  cv::Mat label_, label_f_;    // G in space (CV_32F) and its DFT (CV_32FC2)
+
+  // Scale model.
+  std::vector<double> scale_factors_;
+  std::vector<float> scale_window_;
+  cv::Size scale_model_sz_;
+  std::vector<cv::Mat> scale_labels_f_;  // per peak index: 1 x S, CV_32FC2
+  // The samples of the last track() (translation DFTs in feats_f_, scale DFTs in scale_x_f_), kept for
+  // learn() when params reuse_detection_samples.
+  bool have_detection_ = false;
+  Sample detection_sample_;
+  int detection_scale_index_ = 0;
+  cv::Mat scale_num_;          // d x S, CV_32FC2
+  cv::Mat scale_den_;          // 1 x S, CV_32F
+
+  // Buffers reused every frame.
+  cv::Mat crop_, patch_, grey_, grey_cells_, scale_inter_, scale_patch_;
+  std::vector<cv::Mat> feats_;      // 32 channels, CV_32F
+  std::vector<cv::Mat> feats_f_;    // their DFTs, CV_32FC2
+  std::vector<cv::Mat> scale_fhog_;
+  cv::Mat scale_x_, scale_x_f_;     // d x S real, d x S complex
+  cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_;
+};
+
+}  // namespace gpilot

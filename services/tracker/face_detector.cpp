@@ -1,0 +1,56 @@
+// Haar face search and head-body ratio (see face_detector.hpp).
+#include "face_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "paths.hpp"
+
+namespace gpilot {
+
+cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) {
+  const double w = face.width * p.body_width_in_faces;
+  const double h = face.height * p.body_height_in_faces;
+  const double cx = face.x + face.width / 2;
+  return cv::Rect2d(cx - w / 2, face.y - p.body_top_in_faces * face.height, w, h);
+}
+
+FaceDetector::FaceDetector(const TrackerParams& params) : p_(params) {
+  const std::string path = resolve_project_path(p_.face.cascade);
+  if (!cascade_.load(path))
+    throw std::runtime_error("face cascade '" + path + "' is missing or not a cascade (package opencv-data)");
+}
+
+std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
+  if (frame.empty()) return std::nullopt;
+  if (frame.channels() == 3)
+    cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
+  else
+    frame.copyTo(grey_);
+  const double k = std::max(1.0, p_.face.downscale);
+  const cv::Mat* img = &grey_;
+  if (k > 1.0) {
+    cv::resize(grey_, small_, cv::Size(), 1.0 / k, 1.0 / k, cv::INTER_AREA);
+    img = &small_;
+  }
+  cv::equalizeHist(*img, small_);
+  std::vector<cv::Rect> faces;
+  const int min_px = p_.face.min_face_px;
+  cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px));
+  if (faces.empty()) return std::nullopt;
+  // The largest face, ties broken by position so that the choice does not depend on detection order.
+  const auto best = std::max_element(faces.begin(), faces.end(), [](const cv::Rect& a, const cv::Rect& b) {
+    if (a.area() != b.area()) return a.area() < b.area();
+    return std::make_pair(a.y, a.x) > std::make_pair(b.y, b.x);
+  });
+  FaceDetection d;
+  d.face = cv::Rect2d(best->x * k, best->y * k, best->width * k, best->height * k);
+  d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+  return d;
+}
+
+}  // namespace gpilot

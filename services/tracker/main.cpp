@@ -1,0 +1,17 @@
+// gpilot-tracker: finds the user and keeps a body box on them.
+// Reads CAMERA (image_t) and TRACKER_INIT (tracker_init_t); writes USER_TRACK (user_track_t, one per
+// accepted frame, with that frame's seq and utime) and HEALTH. A frame that does not decode or that the
+// tracker cannot use is rejected (counted in HEALTH) and does not advance the track.
+#include "service_cli.hpp"
+#include "tracker_service.hpp"
+
+int main(int argc, char** argv) {
+  gpilot::ServiceCli cli("gpilot-tracker",
+                         "Haar face search, body box by head-body ratio, DSST tracking with PSR confidence.\n"
+                         "CAMERA + TRACKER_INIT in, USER_TRACK out.");
+  return cli.run_node(argc, argv, [](const gpilot::Config& config, gpilot::BusNode& node) {
+    const auto stage = gpilot::start_tracker_service(config, node);
+    node.run();
+    return 0;
+  });
+}

@@ -1,0 +1,84 @@
+// The tracker stage on a bus, used by gpilot-tracker (live LCM) and gpilot-replay (a log through memq://).
+// Reads CAMERA (image_t) and TRACKER_INIT (tracker_init_t); writes USER_TRACK (user_track_t, one per
+// accepted frame, with that frame's seq and utime) and HEALTH. A frame that does not decode or that the
+// tracker cannot use is rejected (counted in HEALTH) and does not advance the track.
+#include <cstdio>
+#include <stdexcept>
+
+#include "bus_node.hpp"
+#include "image_codec.hpp"
+#include "tracker_service.hpp"
+#include "user_tracker.hpp"
+
+#include "gpilot/image_t.hpp"
+#include "gpilot/tracker_init_t.hpp"
+#include "gpilot/user_track_t.hpp"
+
+namespace {
+
+gpilot::user_track_t to_message(const gpilot::TrackOutput& t, const gpilot::image_t& frame) {
+  gpilot::user_track_t m{};
+  m.utime = frame.utime;
+  m.seq = frame.seq;
+  m.status = static_cast<int8_t>(t.status);
+  m.box[0] = static_cast<float>(t.box.x);
+  m.box[1] = static_cast<float>(t.box.y);
+  m.box[2] = static_cast<float>(t.box.width);
+  m.box[3] = static_cast<float>(t.box.height);
+  m.confidence = static_cast<float>(t.confidence);
+  m.init_source = static_cast<int8_t>(t.init);
+  m.track_id = t.track_id;
+  m.image_width = frame.width;
+  m.image_height = frame.height;
+  return m;
+}
+
+}  // namespace
+
+namespace gpilot {
+
+std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node) {
+  struct State {
+    explicit State(const gpilot::TrackerParams& p) : tracker(p) {}
+    gpilot::UserTracker tracker;
+    cv::Mat frame;
+  };
+  auto state = std::make_shared<State>(config.section<gpilot::TrackerParams>("tracker"));
+  auto& tracker = state->tracker;
+  auto& frame = state->frame;
+
+  node.subscribe<gpilot::image_t>("CAMERA", [&node, &tracker, &frame](const gpilot::image_t& msg, int64_t) {
+    const std::string why = gpilot::image_to_mat(msg, frame);
+    if (!why.empty()) {
+      node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + why);
+      return;
+    }
+    gpilot::TrackOutput out;
+    try {
+      out = tracker.process(frame);
+    } catch (const std::invalid_argument& e) {
+      node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + e.what());
+      return;
+    }
+    node.publish("USER_TRACK", to_message(out, msg));
+    node.set_state(out.status == gpilot::TrackStatus::kTracking ? gpilot::health_t::STATE_OK
+                                                                : gpilot::health_t::STATE_DEGRADED,
+                   out.status == gpilot::TrackStatus::kTracking ? "tracking"
+                   : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
+                                                                : "searching for a face");
+  });
+
+  node.subscribe<gpilot::tracker_init_t>("TRACKER_INIT", [&node, &tracker](const gpilot::tracker_init_t& msg, int64_t) {
+    if (msg.command == gpilot::tracker_init_t::COMMAND_RESET) {
+      tracker.reset();
+      return;
+    }
+    const std::string why = tracker.set_box(cv::Rect2d(msg.box[0], msg.box[1], msg.box[2], msg.box[3]));
+    if (!why.empty()) node.reject("TRACKER_INIT from '" + msg.source + "': " + why);
+  });
+
+  node.set_state(gpilot::health_t::STATE_DEGRADED, "no frame yet");
+  return state;
+}
+
+}  // namespace gpilot

@@ -1,0 +1,61 @@
+// The tracker stage's core: searches the user's face, then follows the body box with DSST, watches the
+// peak-to-sidelobe ratio, declares LOST after lost_frames bad frames and searches again. A manual box
+// (TRACKER_INIT) starts a track on the next frame; a reset goes back to the face search.
+// No LCM, no clock: one frame in, one TrackOutput out; the same frames give the same outputs.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "dsst.hpp"
+#include "face_detector.hpp"
+#include "tracker_params.hpp"
+
+namespace gpilot {
+
+enum class TrackStatus { kSearching = 0, kTracking = 1, kLost = 2 };
+enum class InitSource { kNone = 0, kFace = 1, kManual = 2 };
+
+struct TrackOutput {
+  TrackStatus status = TrackStatus::kSearching;
+  cv::Rect2d box;           //!< body box, pixels (TRACKING: current; LOST: last good; SEARCHING: empty)
+  double confidence = 0.0;  //!< PSR of this frame's translation response (0 while searching)
+  InitSource init = InitSource::kNone;
+  int track_id = 0;         //!< +1 per started track; 0 before the first
+};
+
+class UserTracker {
+ public:
+  // Loads the face cascade: throws std::runtime_error if it cannot.
+  explicit UserTracker(const TrackerParams& params);
+
+  // Asks for a track on box from the next frame on. "" if accepted, else why not (non-finite, < 2 px).
+  std::string set_box(const cv::Rect2d& box);
+  // Drops the track (and a pending box) and searches for a face again.
+  void reset();
+
+  // One frame (CV_8UC3 or CV_8UC1). Throws std::invalid_argument for an unusable frame, without
+  // changing the track. A frame of another size than the track's ends the track (search again).
+  TrackOutput process(const cv::Mat& frame);
+
+  const TrackOutput& last() const { return out_; }
+  int bad_frames() const { return bad_frames_; }
+
+ private:
+  void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source);
+  void search(const cv::Mat& frame);
+
+  TrackerParams p_;
+  FaceDetector faces_;
+  Dsst dsst_;
+  std::optional<cv::Rect2d> pending_box_;
+  TrackOutput out_;
+  cv::Rect2d last_good_box_;
+  cv::Size frame_size_;
+  int bad_frames_ = 0;
+};
+
+}  // namespace gpilot

@@ -1,0 +1,362 @@
+// gpilot-decide + gpilot-flight + gpilot-ctl as real processes on real LCM (inside a private network namespace):
+// HAND_OBS in, GESTURE_CMD, FLIGHT_SETPOINT and the simulator's VEHICLE_STATE out; and gpilot-flight's MAVLink
+// backend against a fake autopilot on 127.0.0.1 (HEARTBEAT, setpoint stream while engaged, COMMAND_LONG,
+// LOCAL_POSITION_NED back to VEHICLE_STATE, bad bytes counted).
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "bus_node.hpp"
+#include "clock.hpp"
+#include "mavlink/frame.hpp"
+#include "mavlink/messages.hpp"
+
+extern char** environ;
+
+namespace gpilot {
+namespace {
+
+const std::string kBin = GPILOT_BIN_DIR;
+
+// A child process, stopped with SIGTERM (then reaped) when the test ends.
+class Child {
+ public:
+  explicit Child(std::vector<std::string> args) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
+  }
+  ~Child() { stop(); }
+  int stop() {
+    if (pid_ <= 0) return -1;
+    kill(pid_, SIGTERM);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return status;
+  }
+  bool running() const { return pid_ > 0; }
+  // Waits for a child that ends by itself; its exit status.
+  int wait() {
+    int status = -1;
+    if (pid_ > 0) waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return status;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+// gpilot-ctl COMMAND, run to its end; true when it exited 0.
+bool ctl(const std::string& command) {
+  return Child({kBin + "/gpilot-ctl", command, "--lcm-url", kDefaultLcmUrl}).wait() == 0;
+}
+
+template <class Msg>
+struct Inbox {
+  std::vector<Msg> got;
+  void on(const lcm::ReceiveBuffer*, const std::string&, const Msg* m) { got.push_back(*m); }
+};
+
+class Bus {
+ public:
+  Bus() : lc_(kDefaultLcmUrl) {}
+  bool good() { return lc_.good(); }
+  template <class Msg>
+  void listen(const std::string& channel, Inbox<Msg>& inbox) {
+    lc_.subscribe(channel, &Inbox<Msg>::on, &inbox);
+  }
+  template <class Msg>
+  void publish(const std::string& channel, const Msg& m) {
+    lc_.publish(channel, &m);
+  }
+  // Handles messages for `seconds`, calling tick every period_s (if given).
+  void pump(double seconds, double period_s = 0.0, const std::function<void()>& tick = {}) {
+    const int64_t end = monotonic_utime() + seconds_to_utime(seconds);
+    int64_t next = monotonic_utime();
+    for (int64_t now; (now = monotonic_utime()) < end;) {
+      if (tick && now >= next) {
+        tick();
+        next += seconds_to_utime(period_s);
+      }
+      const int64_t until = tick ? std::min(next, end) : end;
+      lc_.handleTimeout(static_cast<int>(std::max<int64_t>(1, (until - now) / 1000)));
+    }
+  }
+  // Pumps until pred() or timeout; returns pred().
+  bool wait_for(const std::function<bool()>& pred, double timeout_s) {
+    const int64_t end = monotonic_utime() + seconds_to_utime(timeout_s);
+    while (!pred() && monotonic_utime() < end) lc_.handleTimeout(20);
+    return pred();
+  }
+
+ private:
+  lcm::LCM lc_;
+};
+
+bool has_health(const Inbox<health_t>& h, const std::string& name) {
+  for (const auto& m : h.got)
+    if (m.name == name) return true;
+  return false;
+}
+
+TEST(FlightService, PointingMovesTheSimulatedDroneWestOnlyWhileEngaged) {
+  Bus bus;
+  ASSERT_TRUE(bus.good());
+  Inbox<health_t> health;
+  Inbox<gesture_cmd_t> cmds;
+  Inbox<flight_setpoint_t> setpoints;
+  Inbox<vehicle_state_t> states;
+  bus.listen("HEALTH", health);
+  bus.listen("GESTURE_CMD", cmds);
+  bus.listen("FLIGHT_SETPOINT", setpoints);
+  bus.listen("VEHICLE_STATE", states);
+  Child decide({kBin + "/gpilot-decide", "--lcm-url", kDefaultLcmUrl});
+  Child flight({kBin + "/gpilot-flight", "--lcm-url", kDefaultLcmUrl});
+  ASSERT_TRUE(decide.running() && flight.running());
+  ASSERT_TRUE(bus.wait_for([&] { return has_health(health, "gpilot-decide") && has_health(health, "gpilot-flight"); }, 10));
+  ASSERT_TRUE(bus.wait_for([&] { return !setpoints.got.empty() && !states.got.empty(); }, 5));
+
+  // Not engaged: zero setpoints that say so.
+  EXPECT_TRUE(setpoints.got.back().reasons & flight_setpoint_t::REASON_NOT_ENGAGED);
+  EXPECT_FALSE(setpoints.got.back().engaged);
+
+  // The user, centred, pointing to their right (hand on the image's left) at 25 fps.
+  int64_t seq = 0;
+  auto frame = [&] {
+    const int64_t now = wall_utime();
+    user_track_t t{};
+    t.utime = now;
+    t.seq = seq;
+    t.status = user_track_t::STATUS_TRACKING;
+    t.box[0] = 270;
+    t.box[1] = 100;
+    t.box[2] = 100;
+    t.box[3] = 300;
+    t.confidence = 10;
+    t.init_source = user_track_t::INIT_MANUAL;
+    t.track_id = 1;
+    t.image_width = 640;
+    t.image_height = 480;
+    bus.publish("USER_TRACK", t);
+    hand_obs_t h{};
+    h.utime = now;
+    h.seq = seq;
+    h.track_id = 1;
+    h.track_status = user_track_t::STATUS_TRACKING;
+    for (int i = 0; i < 4; ++i) h.user_box[i] = t.box[i];
+    h.kind = hand_obs_t::KIND_OUT;
+    h.vector[0] = -50;  // half a box width to the image's left
+    h.vector[1] = 0;
+    h.image_width = 640;
+    h.image_height = 480;
+    bus.publish("HAND_OBS", h);
+    ++seq;
+  };
+  // Pointing while NOT engaged: nothing moves.
+  bus.pump(2.0, 0.04, frame);
+  const vehicle_state_t before = states.got.back();
+  EXPECT_EQ(cmds.got.back().mode, gesture_cmd_t::MODE_FINE);
+  EXPECT_NEAR(cmds.got.back().direction[0], -0.5, 1e-6);
+  EXPECT_EQ(cmds.got.back().seq + 1, seq);  // one GESTURE_CMD per HAND_OBS, with its seq
+  EXPECT_TRUE(setpoints.got.back().reasons & flight_setpoint_t::REASON_NOT_ENGAGED);
+  EXPECT_EQ(setpoints.got.back().velocity[1], 0.0f);
+
+  ASSERT_TRUE(ctl("engage"));
+  bus.pump(2.5, 0.04, frame);
+  const vehicle_state_t after = states.got.back();
+  const flight_setpoint_t sp = setpoints.got.back();
+  EXPECT_TRUE(sp.engaged);
+  EXPECT_EQ(sp.reasons & ~flight_setpoint_t::REASON_COMMAND_DELAY, 0);
+  EXPECT_FLOAT_EQ(sp.velocity[1], -0.5f);  // body left = the user's right
+  EXPECT_LT(after.position[1] - before.position[1], -0.3);  // facing north: west
+  EXPECT_NEAR(after.position[0], before.position[0], 0.1);
+  EXPECT_EQ(after.source, vehicle_state_t::SOURCE_SIMULATOR);
+
+  // The user vanishes (no more frames): within 0.3 s + a tick the setpoints are zero and say why.
+  bus.pump(0.6);
+  const flight_setpoint_t stale = setpoints.got.back();
+  EXPECT_EQ(stale.velocity[1], 0.0f);
+  EXPECT_TRUE(stale.reasons & flight_setpoint_t::REASON_STALE_COMMAND);
+  EXPECT_TRUE(stale.reasons & flight_setpoint_t::REASON_STALE_TRACK);
+
+  ASSERT_TRUE(ctl("land"));
+  bus.pump(0.5);
+  EXPECT_TRUE(setpoints.got.back().reasons & flight_setpoint_t::REASON_LANDING);
+  EXPECT_EQ(states.got.back().landed_state, vehicle_state_t::LANDED_LANDING);
+  EXPECT_EQ(flight.stop() & 0x7f, 0);  // exited on SIGTERM by itself, no crash
+}
+
+// The fake autopilot: a UDP socket on 127.0.0.1 that answers whoever wrote to it.
+class FakeAutopilot {
+ public:
+  FakeAutopilot() {
+    fd_ = socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    socklen_t n = sizeof a;
+    getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &n);
+    port_ = ntohs(a.sin_port);
+    timeval tv{0, 10000};
+    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  }
+  ~FakeAutopilot() { close(fd_); }
+  int port() const { return port_; }
+  // Reads what has arrived (for up to 10 ms) into frames.
+  void poll() {
+    uint8_t buf[2048];
+    sockaddr_in from{};
+    socklen_t n = sizeof from;
+    const ssize_t got = recvfrom(fd_, buf, sizeof buf, 0, reinterpret_cast<sockaddr*>(&from), &n);
+    if (got <= 0) return;
+    peer_ = from;
+    have_peer_ = true;
+    parser_.feed(buf, static_cast<size_t>(got), [&](const mavlink::Frame& f) { frames.push_back(f); });
+    parser_.end_of_datagram();
+  }
+  void send(const std::vector<uint8_t>& bytes) {
+    if (have_peer_)
+      sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&peer_), sizeof peer_);
+  }
+  int count(uint32_t msgid) const {
+    int n = 0;
+    for (const auto& f : frames) n += f.msgid == msgid ? 1 : 0;
+    return n;
+  }
+  std::vector<mavlink::Frame> frames;
+  bool have_peer_ = false;
+
+ private:
+  int fd_ = -1;
+  int port_ = 0;
+  sockaddr_in peer_{};
+  mavlink::FrameParser parser_;
+};
+
+template <class M>
+std::vector<uint8_t> from_autopilot(const M& m, uint8_t seq) {
+  return mavlink::encode_frame({seq, 1, 1, M::kId, mavlink::pack(m)});
+}
+
+TEST(FlightService, MavlinkBackendTalksToAnAutopilotOnLoopback) {
+  Bus bus;
+  ASSERT_TRUE(bus.good());
+  FakeAutopilot ap;
+  Inbox<vehicle_state_t> states;
+  Inbox<health_t> health;
+  bus.listen("VEHICLE_STATE", states);
+  bus.listen("HEALTH", health);
+  Child flight({kBin + "/gpilot-flight", "--lcm-url", kDefaultLcmUrl, "--set", "flight.backend=mavlink", "--set",
+                "mavlink.endpoint=udp:127.0.0.1:" + std::to_string(ap.port())});
+  auto run = [&](double seconds, const std::function<void()>& each = {}) {
+    const int64_t end = monotonic_utime() + seconds_to_utime(seconds);
+    while (monotonic_utime() < end) {
+      ap.poll();
+      if (each) each();
+      bus.pump(0.005);
+    }
+  };
+  // Our HEARTBEAT arrives (sent at start and at 1 Hz).
+  run(1.5);
+  ASSERT_GE(ap.count(mavlink::Heartbeat::kId), 1);
+  ASSERT_TRUE(ap.have_peer_);
+  EXPECT_EQ(ap.count(mavlink::SetPositionTargetLocalNed::kId), 0);  // not engaged: no setpoints
+
+  // The autopilot answers: armed PX4, a position and an attitude -> VEHICLE_STATE from MAVLink.
+  mavlink::Heartbeat hb;
+  hb.autopilot = 12;
+  hb.type = 2;
+  hb.base_mode = 128 | 1;
+  mavlink::Attitude att;
+  att.yaw = 0.75f;
+  mavlink::LocalPositionNed pos;
+  pos.x = 1.5f;
+  pos.y = -2.0f;
+  pos.z = -3.0f;
+  uint8_t seq = 0;
+  auto answer = [&] {
+    std::vector<uint8_t> d;
+    for (auto b : {from_autopilot(hb, seq++), from_autopilot(att, seq++), from_autopilot(pos, seq++)})
+      d.insert(d.end(), b.begin(), b.end());
+    ap.send(d);
+  };
+  answer();
+  ASSERT_TRUE(bus.wait_for([&] { return !states.got.empty(); }, 2.0));
+  const vehicle_state_t s = states.got.back();
+  EXPECT_EQ(s.source, vehicle_state_t::SOURCE_MAVLINK);
+  EXPECT_EQ(s.position[0], 1.5f);
+  EXPECT_EQ(s.position[1], -2.0f);
+  EXPECT_EQ(s.position[2], -3.0f);
+  EXPECT_EQ(s.attitude[2], 0.75f);
+  EXPECT_TRUE(s.armed);
+
+  // arm -> COMMAND_LONG(400, 1) once (gpilot-ctl repeats, the bridge acts once)
+  ASSERT_TRUE(ctl("arm"));
+  run(0.5);
+  int arms = 0;
+  for (const auto& f : ap.frames)
+    if (f.msgid == mavlink::CommandLong::kId && mavlink::unpack_command_long(f.payload).command == 400) ++arms;
+  EXPECT_EQ(arms, 1);
+
+  // engaged: SET_POSITION_TARGET_LOCAL_NED streams at >= 20 Hz (zero: no gesture yet), and OFFBOARD is asked for
+  ASSERT_TRUE(ctl("engage"));
+  run(0.3, answer);
+  const int at_engage = ap.count(mavlink::SetPositionTargetLocalNed::kId);
+  run(1.0, answer);
+  const int in_one_second = ap.count(mavlink::SetPositionTargetLocalNed::kId) - at_engage;
+  EXPECT_GE(in_one_second, 20);
+  bool offboard = false;
+  for (const auto& f : ap.frames)
+    if (f.msgid == mavlink::CommandLong::kId && mavlink::unpack_command_long(f.payload).command == 176) offboard = true;
+  EXPECT_TRUE(offboard);
+  const auto& last = ap.frames.back();
+  if (last.msgid == mavlink::SetPositionTargetLocalNed::kId) {
+    const auto m = mavlink::unpack_set_position_target_local_ned(last.payload);
+    EXPECT_EQ(m.coordinate_frame, 8);
+    EXPECT_EQ(m.type_mask, 1479);
+    EXPECT_EQ(m.vx, 0.0f);
+  }
+
+  // disengage: the stream stops
+  ASSERT_TRUE(ctl("disengage"));
+  run(0.3);
+  const int at_disengage = ap.count(mavlink::SetPositionTargetLocalNed::kId);
+  run(0.5);
+  EXPECT_EQ(ap.count(mavlink::SetPositionTargetLocalNed::kId), at_disengage);
+
+  // bad bytes from the autopilot are counted in HEALTH, never a crash
+  auto bad = from_autopilot(pos, seq++);
+  bad[12] ^= 0xFF;
+  ap.send(bad);
+  health.got.clear();
+  run(2.2);
+  int64_t rejected = 0;
+  std::string reason;
+  for (const auto& h : health.got)
+    if (h.name == "gpilot-flight") {
+      rejected = h.rejected;
+      reason = h.last_reject_reason;
+    }
+  EXPECT_GE(rejected, 1);
+  EXPECT_NE(reason.find("MAVLink"), std::string::npos) << reason;
+  EXPECT_EQ(flight.stop() & 0x7f, 0);
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,278 @@
+// The proof that an autopilot reads us right: the bytes gpilot-flight sends are decoded by node-mavlink (an
+// independent implementation, tests/mavlink/peer.js) field by field, and bytes node-mavlink encodes are decoded
+// by ours. No network: the peer reads stdin and writes stdout.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "flight_bridge.hpp"
+#include "mavlink/frame.hpp"
+#include "mavlink/messages.hpp"
+#include "mavlink/session.hpp"
+
+namespace gpilot::mavlink {
+namespace {
+
+const std::string kPeerDir = GPILOT_MAVLINK_PEER_DIR;
+
+bool peer_available(std::string& why) {
+  if (std::system("node --version > /dev/null 2>&1") != 0) {
+    why = "node is not installed (deploy/setup installs nodejs)";
+    return false;
+  }
+  if (access((kPeerDir + "/node_modules/node-mavlink/package.json").c_str(), R_OK) != 0) {
+    why = "node-mavlink is not installed in tests/mavlink (run deploy/setup, or npm ci there)";
+    return false;
+  }
+  return true;
+}
+
+#define REQUIRE_PEER()                                  \
+  do {                                                  \
+    std::string why;                                    \
+    if (!peer_available(why)) GTEST_SKIP() << why;      \
+  } while (0)
+
+// Runs `node peer.js args` with `input` on stdin; returns stdout lines.
+std::vector<std::string> run_peer(const std::string& args, const std::string& input) {
+  char path[] = "/tmp/gpilot-mavlink-peer-XXXXXX";
+  const int fd = mkstemp(path);
+  EXPECT_GE(fd, 0);
+  close(fd);
+  std::ofstream(path) << input;
+  const std::string cmd = "cd '" + kPeerDir + "' && node peer.js " + args + " < '" + path + "'";
+  std::vector<std::string> lines;
+  FILE* p = popen(cmd.c_str(), "r");
+  EXPECT_NE(p, nullptr);
+  std::string cur;
+  for (int c; (c = fgetc(p)) != EOF;) {
+    if (c == '\n') {
+      lines.push_back(cur);
+      cur.clear();
+    } else {
+      cur += static_cast<char>(c);
+    }
+  }
+  EXPECT_EQ(pclose(p), 0) << cmd;
+  unlink(path);
+  return lines;
+}
+
+std::string hex(const std::vector<uint8_t>& b) {
+  static const char* d = "0123456789abcdef";
+  std::string s;
+  for (uint8_t v : b) {
+    s += d[v >> 4];
+    s += d[v & 15];
+  }
+  return s;
+}
+
+std::vector<uint8_t> unhex(const std::string& s) {
+  std::vector<uint8_t> b;
+  for (size_t i = 0; i + 1 < s.size(); i += 2) b.push_back(static_cast<uint8_t>(std::stoi(s.substr(i, 2), nullptr, 16)));
+  return b;
+}
+
+// The value text of "key": in one JSON line (numbers and short strings; enough for the peer's flat output).
+std::string field(const std::string& json, const std::string& key) {
+  const std::string k = "\"" + key + "\":";
+  const size_t at = json.find(k);
+  if (at == std::string::npos) return "<missing " + key + ">";
+  const size_t start = at + k.size();
+  size_t end = start;
+  if (json[start] == '"') end = json.find('"', start + 1) + 1;
+  else
+    while (end < json.size() && json[end] != ',' && json[end] != '}') ++end;
+  return json.substr(start, end - start);
+}
+
+double num(const std::string& json, const std::string& key) { return std::stod(field(json, key)); }
+
+TEST(NodeMavlink, ItsRegistryAgreesWithOurIdsCrcExtrasAndLengths) {
+  REQUIRE_PEER();
+  const uint32_t ids[] = {0, 30, 32, 76, 77, 84, 245};
+  std::string args = "table";
+  for (uint32_t id : ids) args += " " + std::to_string(id);
+  const auto out = run_peer(args, "");
+  ASSERT_EQ(out.size(), 1u);
+  for (uint32_t id : ids) {
+    const MessageInfo* info = message_info(id);
+    ASSERT_NE(info, nullptr);
+    const std::string entry = out[0].substr(out[0].find("\"" + std::to_string(id) + "\":"));
+    EXPECT_EQ(field(entry, "name"), "\"" + std::string(info->name) + "\"") << id;
+    EXPECT_EQ(num(entry, "crcExtra"), info->crc_extra) << info->name;
+    EXPECT_EQ(num(entry, "length"), info->length) << info->name;
+  }
+}
+
+TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
+  REQUIRE_PEER();
+  // GIVEN a setpoint from the bridge for a user pointing to their right (image left): body -y at 0.5 m/s
+  FlightBridge bridge{FlightParams{}};
+  BridgeInputs in;
+  in.now = in.command_received = in.track_received = in.vehicle_received = 1700000000000000;
+  GestureCommand c;
+  c.seq = 5;
+  c.track_id = 1;
+  c.mode = GestureMode::Fine;
+  c.direction[0] = -0.5;
+  c.direction[1] = 0.25;
+  c.user_box_width = 100;
+  in.command = c;
+  UserTrack t;
+  t.tracking = true;
+  t.track_id = 1;
+  t.image_width = 640;
+  t.box[0] = 0.625 * 640 - 50;  // user right of centre by 1/8 of the width: yaw rate 2 * 0.125 = 0.25 rad/s
+  t.box[2] = 100;
+  t.box[3] = 300;
+  in.track = t;
+  in.vehicle = VehicleState{};
+  in.engaged = true;
+  const Setpoint sp = bridge.update(in);
+  ASSERT_EQ(sp.reasons, 0);
+
+  MavlinkSession s{MavlinkParams{}};
+  std::string input;
+  input += hex(s.heartbeat()) + "\n";
+  s.setpoint(sp, 1000000);
+  input += hex(s.setpoint(sp, 1250000)) + "\n";
+  input += hex(s.arm(true)) + "\n";
+  input += hex(s.takeoff(2.5f)) + "\n";
+  input += hex(s.land()) + "\n";
+  input += hex(s.px4_offboard()) + "\n";
+  const auto out = run_peer("decode", input);
+  ASSERT_EQ(out.size(), 7u);  // 6 packets + summary
+
+  const std::string& hb = out[0];
+  EXPECT_EQ(field(hb, "msg"), "\"HEARTBEAT\"");
+  EXPECT_EQ(num(hb, "v"), 2);
+  EXPECT_EQ(num(hb, "seq"), 0);
+  EXPECT_EQ(num(hb, "sysid"), 255);
+  EXPECT_EQ(num(hb, "compid"), 191);
+  EXPECT_EQ(num(hb, "type"), kMavTypeOnboardController);
+  EXPECT_EQ(num(hb, "autopilot"), kMavAutopilotInvalid);
+  EXPECT_EQ(num(hb, "baseMode"), 0);
+  EXPECT_EQ(num(hb, "customMode"), 0);
+  EXPECT_EQ(num(hb, "systemStatus"), kMavStateActive);
+  EXPECT_EQ(num(hb, "mavlinkVersion"), 3);
+
+  const std::string& st = out[1];
+  EXPECT_EQ(field(st, "msg"), "\"SET_POSITION_TARGET_LOCAL_NED\"");
+  EXPECT_EQ(num(st, "seq"), 2);
+  EXPECT_EQ(num(st, "timeBootMs"), 250);
+  EXPECT_EQ(num(st, "coordinateFrame"), 8);  // MAV_FRAME_BODY_NED
+  EXPECT_EQ(num(st, "typeMask"), 1479);      // velocity and yaw rate only
+  EXPECT_EQ(num(st, "targetSystem"), 1);
+  EXPECT_EQ(num(st, "targetComponent"), 1);
+  EXPECT_EQ(num(st, "vx"), 0.0);
+  EXPECT_EQ(num(st, "vy"), -0.5);   // body left: the user's right
+  EXPECT_EQ(num(st, "vz"), 0.25);   // hand below the shoulder: down
+  EXPECT_EQ(num(st, "yawRate"), 0.25);
+  for (const char* k : {"x", "y", "z", "afx", "afy", "afz", "yaw"}) EXPECT_EQ(num(st, k), 0.0) << k;
+
+  const std::string& arm = out[2];
+  EXPECT_EQ(field(arm, "msg"), "\"COMMAND_LONG\"");
+  EXPECT_EQ(num(arm, "command"), 400);
+  EXPECT_EQ(num(arm, "param1"), 1);
+  EXPECT_EQ(num(arm, "targetSystem"), 1);
+  EXPECT_EQ(num(arm, "targetComponent"), 1);
+  EXPECT_EQ(num(arm, "confirmation"), 0);
+  EXPECT_EQ(num(out[3], "command"), 22);
+  EXPECT_EQ(num(out[3], "param7"), 2.5);
+  EXPECT_EQ(field(out[3], "param4"), "null");  // NaN: the autopilot's default yaw (JSON has no NaN)
+  EXPECT_EQ(num(out[4], "command"), 21);
+  EXPECT_EQ(num(out[5], "command"), 176);
+  EXPECT_EQ(num(out[5], "param1"), 1);
+  EXPECT_EQ(num(out[5], "param2"), 6);
+
+  EXPECT_NE(out.back().find("\"summary\""), std::string::npos);
+  EXPECT_EQ(num(out.back(), "valid"), 6);
+  EXPECT_EQ(num(out.back(), "invalid"), 0);
+}
+
+TEST(NodeMavlink, RejectsOurFrameWithACorruptedByteAsWeDo) {
+  REQUIRE_PEER();
+  MavlinkSession s{MavlinkParams{}};
+  Setpoint sp;
+  sp.velocity[1] = -0.5;
+  auto bytes = s.setpoint(sp, 0);
+  bytes[20] ^= 0x01;
+  const auto out = run_peer("decode", hex(bytes) + "\n");
+  ASSERT_EQ(out.size(), 1u);  // the summary only: no packet
+  EXPECT_EQ(num(out[0], "valid"), 0);
+  EXPECT_EQ(num(out[0], "crcErrors"), 1);
+  FrameParser p;
+  int frames = 0;
+  p.feed(bytes.data(), bytes.size(), [&](const Frame&) { ++frames; });
+  EXPECT_EQ(frames, 0);
+  EXPECT_EQ(p.counts().bad_crc, 1);
+}
+
+TEST(NodeMavlink, WeDecodeWhatItEncodes) {
+  REQUIRE_PEER();
+  const std::string req =
+      R"({"msg":"HEARTBEAT","seq":10,"sysid":1,"compid":1,"fields":{"type":2,"autopilot":12,"baseMode":209,"customMode":393216,"systemStatus":4,"mavlinkVersion":3}})"
+      "\n"
+      R"({"msg":"ATTITUDE","seq":11,"sysid":1,"compid":1,"fields":{"timeBootMs":5000,"roll":0.125,"pitch":-0.0625,"yaw":-1.5,"rollspeed":0.5,"pitchspeed":0.25,"yawspeed":-0.375}})"
+      "\n"
+      R"({"msg":"EXTENDED_SYS_STATE","seq":12,"sysid":1,"compid":1,"fields":{"vtolState":0,"landedState":2}})"
+      "\n"
+      R"({"msg":"COMMAND_ACK","seq":13,"sysid":1,"compid":1,"fields":{"command":400,"result":0,"targetSystem":255,"targetComponent":191}})"
+      "\n"
+      R"({"msg":"LOCAL_POSITION_NED","seq":14,"sysid":1,"compid":1,"fields":{"timeBootMs":5010,"x":3.5,"y":-1.25,"z":-2.0,"vx":0.5,"vy":-0.25,"vz":0.125}})"
+      "\n";
+  const auto out = run_peer("encode", req);
+  ASSERT_EQ(out.size(), 5u);
+  std::vector<uint8_t> datagram;
+  for (const auto& line : out) {
+    const auto b = unhex(line);
+    datagram.insert(datagram.end(), b.begin(), b.end());
+  }
+  MavlinkSession s{MavlinkParams{}};
+  const auto state = s.on_datagram(datagram.data(), datagram.size(), 4242);
+  EXPECT_EQ(s.parser().counts().frames, 5);
+  EXPECT_EQ(s.parser().rejected(), 0);
+  ASSERT_TRUE(state.has_value());
+  EXPECT_EQ(state->utime, 4242);
+  EXPECT_TRUE(state->armed);  // baseMode 209 has the armed bit (128)
+  EXPECT_EQ(state->landed, VehicleState::Landed::InAir);
+  EXPECT_EQ(state->position[0], 3.5);
+  EXPECT_EQ(state->position[1], -1.25);
+  EXPECT_EQ(state->position[2], -2.0);
+  EXPECT_EQ(state->velocity[0], 0.5);
+  EXPECT_EQ(state->velocity[1], -0.25);
+  EXPECT_EQ(state->velocity[2], 0.125);
+  EXPECT_EQ(state->attitude[0], 0.125);
+  EXPECT_EQ(state->attitude[1], -0.0625);
+  EXPECT_EQ(state->attitude[2], -1.5);
+  EXPECT_EQ(state->yaw_rate, -0.375);
+  ASSERT_TRUE(s.last_ack().has_value());
+  EXPECT_EQ(s.last_ack()->command, 400);
+  EXPECT_EQ(s.last_ack()->target_system, 255);
+  EXPECT_EQ(s.last_ack()->target_component, 191);
+  // and the raw frames agree field by field with what was asked
+  FrameParser p;
+  std::vector<Frame> frames;
+  p.feed(datagram.data(), datagram.size(), [&](const Frame& f) { frames.push_back(f); });
+  ASSERT_EQ(frames.size(), 5u);
+  const Heartbeat h = unpack_heartbeat(frames[0].payload);
+  EXPECT_EQ(frames[0].seq, 10);
+  EXPECT_EQ(h.custom_mode, 393216u);
+  EXPECT_EQ(h.autopilot, 12);
+  EXPECT_EQ(h.type, 2);
+  const Attitude a = unpack_attitude(frames[1].payload);
+  EXPECT_EQ(a.time_boot_ms, 5000u);
+  EXPECT_EQ(a.rollspeed, 0.5f);
+  EXPECT_EQ(a.pitchspeed, 0.25f);
+  EXPECT_EQ(unpack_local_position_ned(frames[4].payload).time_boot_ms, 5010u);
+}
+
+}  // namespace
+}  // namespace gpilot::mavlink

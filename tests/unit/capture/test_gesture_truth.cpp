@@ -1,0 +1,88 @@
+// The paper's rules on true hand positions (the ground truth's expected observation and command), with
+// hand-computed answers on a 100 x 200 px user box at (100, 50): p_uc = (150, 90), p_bc = (150, 150).
+#include <gtest/gtest.h>
+
+#include "gesture_truth.hpp"
+#include "gpilot/gesture_cmd_t.hpp"
+#include "gpilot/hand_obs_t.hpp"
+
+namespace gpilot {
+namespace {
+
+const cv::Rect2f kBox(100, 50, 100, 200);
+const cv::Size kImage(640, 480);
+const cv::Point2f kRestRight(120, 200), kRestLeft(180, 200);  // inside the box, below the front band
+
+ExpectedCommand run(cv::Point2f right, cv::Point2f left = kRestLeft) {
+  return expected_command(kBox, {right, left}, kImage, TruthRules{});
+}
+
+TEST(GestureTruth, UserBoxFromFaceUsesTheTrackerRatios) {
+  const cv::Rect2f b = user_box_from_face({300, 200, 32, 32}, TrackerParams{});
+  EXPECT_FLOAT_EQ(b.width, 88.0f);    // 2.75 face widths
+  EXPECT_FLOAT_EQ(b.height, 224.0f);  // 7 face heights
+  EXPECT_FLOAT_EQ(b.x, 316.0f - 44.0f);
+  EXPECT_FLOAT_EQ(b.y, 192.0f);       // 0.25 face heights above the face
+}
+
+TEST(GestureTruth, RestingHandsGiveNoGesture) {
+  const ExpectedCommand e = run(kRestRight);
+  EXPECT_EQ(e.kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_HOVER);
+  EXPECT_EQ(e.shoulder_centre, cv::Point2f(150, 90));  // 0.2 of the height
+  EXPECT_EQ(e.body_centre, cv::Point2f(150, 150));
+}
+
+TEST(GestureTruth, StretchedOutToTheUsersRightIsFineAndNegativeX) {
+  // The user's right hand shows on the image's left: x < 0 from p_uc.
+  const ExpectedCommand e = run({20, 80});
+  EXPECT_EQ(e.kind, hand_obs_t::KIND_OUT);
+  EXPECT_EQ(e.vector, cv::Point2f(-130, -10));
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_FINE);
+  EXPECT_FLOAT_EQ(e.direction.x, -1.3f);
+  EXPECT_FLOAT_EQ(e.direction.y, -0.1f);
+  EXPECT_FLOAT_EQ(e.direction.z, 0.0f);
+}
+
+TEST(GestureTruth, RaisedHandSnapsToUpAndLowHandToDown) {
+  // |y| = 60 > 0.5 * |x| = 20: x snapped to 0
+  ExpectedCommand e = run({190, 30});
+  EXPECT_EQ(e.kind, hand_obs_t::KIND_OUT);
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_UP);
+  EXPECT_FLOAT_EQ(e.direction.x, 0.0f);
+  EXPECT_FLOAT_EQ(e.direction.y, -0.6f);
+  e = run(kRestRight, {230, 200});  // left hand low and out: (80, 110)
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_DOWN);
+  EXPECT_FLOAT_EQ(e.direction.y, 1.1f);
+}
+
+TEST(GestureTruth, OfTwoOutstretchedHandsTheFurtherOneWins) {
+  // score = |dx| + 0.2 * (p_uc.y - y): right (-100, 0) -> 100; left (+90, -60 up) -> 90 + 12 = 102
+  const ExpectedCommand e = run({50, 90}, {240, 30});
+  EXPECT_EQ(e.vector, cv::Point2f(90, -60));
+}
+
+TEST(GestureTruth, AHandBeyondTheSearchRectangleIsNotSeen) {
+  // 0.25 box heights above the box top is y = 0; a hand at y = -10 is outside the rectangle (and the image)
+  EXPECT_EQ(run({150, -10}).kind, hand_obs_t::KIND_NONE);
+}
+
+TEST(GestureTruth, HandInFrontAboveTheCentreIsCloserBelowIsFurther) {
+  ExpectedCommand e = run({155, 120});
+  EXPECT_EQ(e.kind, hand_obs_t::KIND_FRONT);
+  EXPECT_EQ(e.vector, cv::Point2f(5, -30));
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_CLOSER);
+  EXPECT_FLOAT_EQ(e.direction.z, 1.0f);  // toward the user
+  e = run({145, 155});  // band ends at 250 - 0.45 * 200 = 160
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_FURTHER);
+  EXPECT_FLOAT_EQ(e.direction.z, -1.0f);
+}
+
+TEST(GestureTruth, FrontHandOutsideTheGateOrTheBandIsNothing) {
+  EXPECT_EQ(run({171, 120}).kind, hand_obs_t::KIND_NONE);  // |dx| = 21 >= w/5 = 20
+  EXPECT_EQ(run({150, 170}).kind, hand_obs_t::KIND_NONE);  // in the removed legs band
+  EXPECT_EQ(run({150, 80}).kind, hand_obs_t::KIND_NONE);   // in the removed face band (top 0.2 = 90)
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,119 @@
+// Scenario files: the shipped scenarios load, the script blends smoothly from pose to pose, keys carry over,
+// and a bad file is an error that names the file and the key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpilot/ground_truth_t.hpp"
+#include "person_figure.hpp"
+#include "scenario.hpp"
+
+namespace gpilot {
+namespace {
+
+std::string error_of(const std::string& yaml) {
+  try {
+    Scenario::parse(yaml, "test.yaml");
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+TEST(Scenario, BareNameLoadsTheShippedTour) {
+  const Scenario s = Scenario::load("tour");
+  EXPECT_EQ(s.name(), "tour");
+  EXPECT_DOUBLE_EQ(s.duration_s(), 60.0);
+  EXPECT_NE(s.origin().find("deploy/scenarios/tour.yaml"), std::string::npos);
+  EXPECT_GE(s.keyframes().size(), 10u);
+  // The tour shows every gesture.
+  for (int g = ground_truth_t::GESTURE_REST; g <= ground_truth_t::GESTURE_FURTHER; ++g) {
+    bool seen = false;
+    for (const auto& k : s.keyframes()) seen = seen || k.state.gesture == g;
+    EXPECT_TRUE(seen) << gesture_name(g);
+  }
+}
+
+TEST(Scenario, EveryShippedScenarioLoads) {
+  for (const char* name : {"tour", "fine-piloting", "closer-further", "idle", "nuisances"}) {
+    SCOPED_TRACE(name);
+    const Scenario s = Scenario::load(name);
+    EXPECT_GT(s.duration_s(), 10.0);
+  }
+}
+
+TEST(Scenario, MissingFileIsAClearError) {
+  try {
+    Scenario::load("no-such-scenario");
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("no-such-scenario"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scenario, BlendsSmoothlyAndHoldsEachPose) {
+  // GIVEN rest at t=0, then the right arm out at t=2 with a 1 s transition
+  const Scenario s = Scenario::parse(
+      "keyframes:\n"
+      "  - {t: 0, gesture: REST, right_arm: rest}\n"
+      "  - {t: 2, gesture: OUT, right_arm: out, transition_s: 1.0, light: 0.5}\n",
+      "x.yaml");
+  // THEN before the move the pose is rest, half-way it is half-way (smoothstep(0.5) = 0.5), after it is out
+  EXPECT_DOUBLE_EQ(s.state_at(1.9).right_arm.angle_deg, 0.0);
+  EXPECT_NEAR(s.state_at(2.5).right_arm.angle_deg, 45.0, 1e-9);
+  EXPECT_NEAR(s.state_at(2.5).light, 0.75, 1e-9);
+  EXPECT_DOUBLE_EQ(s.state_at(3.0).right_arm.angle_deg, 90.0);
+  EXPECT_DOUBLE_EQ(s.state_at(100.0).right_arm.angle_deg, 90.0);
+  // the gesture label switches half-way through the transition
+  EXPECT_EQ(s.state_at(2.4).gesture, ground_truth_t::GESTURE_REST);
+  EXPECT_EQ(s.state_at(2.6).gesture, ground_truth_t::GESTURE_OUT);
+  // the left arm, never given, stays at rest; default duration = last keyframe + transition + 2 s
+  EXPECT_DOUBLE_EQ(s.state_at(3.0).left_arm.angle_deg, ArmPose::preset("rest").angle_deg);
+  EXPECT_DOUBLE_EQ(s.duration_s(), 5.0);
+}
+
+TEST(Scenario, AnInterruptedMoveStartsFromWhereItGot) {
+  const Scenario s = Scenario::parse(
+      "keyframes:\n"
+      "  - {t: 0, right_arm: {angle_deg: 0}}\n"
+      "  - {t: 1, right_arm: {angle_deg: 100}, transition_s: 2}\n"
+      "  - {t: 2, right_arm: {angle_deg: 0}, transition_s: 1}\n",
+      "x.yaml");
+  // at t=2 the first move is half done (50 deg); the second starts there: no jump
+  EXPECT_NEAR(s.state_at(2.0).right_arm.angle_deg, 50.0, 1e-9);
+  EXPECT_NEAR(s.state_at(2.5).right_arm.angle_deg, 25.0, 1e-9);
+  EXPECT_NEAR(s.state_at(3.0).right_arm.angle_deg, 0.0, 1e-9);
+}
+
+TEST(Scenario, HandOffsetPlacesTheHand) {
+  // GIVEN a hand 0.3 m in front of the shoulder and 0.2 m below it
+  const ArmPose p = ArmPose::from_hand_offset(0.0, -0.2, 0.3);
+  const cv::Point3d h = hand_offset_of(FigureDims{}, p);
+  EXPECT_NEAR(h.x, 0.0, 1e-9);
+  EXPECT_NEAR(h.y, -0.2, 1e-9);
+  EXPECT_NEAR(h.z, 0.3, 1e-9);
+}
+
+TEST(Scenario, PersonFacesTheCameraByDefault) {
+  const Scenario s = Scenario::parse("camera: {north: 1, east: 2, down: -1.5, yaw_deg: 90}\nkeyframes: [{t: 0}]\n", "x");
+  // 3 m along the camera's yaw (east), facing back west
+  EXPECT_NEAR(s.person().north, 1.0, 1e-9);
+  EXPECT_NEAR(s.person().east, 5.0, 1e-9);
+  EXPECT_NEAR(std::fabs(s.person().facing_yaw), M_PI / 2, 1e-9);
+  EXPECT_LT(s.person().facing_yaw, 0.0);
+}
+
+TEST(Scenario, BadFilesNameTheKey) {
+  EXPECT_NE(error_of("keyframes: []").find("keyframes"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0, gesture: WAVE}]").find("keyframes[0].gesture"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0, right_arm: flap}]").find("flap"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 1}, {t: 1}]").find("keyframes[1].t"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0, lihgt: 2}]").find("keyframes[0].lihgt: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0, light: -1}]").find("keyframes[0].light"), std::string::npos);
+  EXPECT_NE(error_of("camera: {north: x}\nkeyframes: [{t: 0}]").find("camera.north: not a number"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0}").find("test.yaml: not valid YAML"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0, right_arm: {hand: [1, 2]}}]").find("right_arm.hand"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,231 @@
+// The synthetic world: ground truth agrees with the picture (at three distances and two yaws), the closed loop
+// moves the person in the image the right way, the expected commands of the tour are its gestures, renders
+// are deterministic, and the person's colours work with the project's real skin model.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpilot/gesture_cmd_t.hpp"
+#include "gpilot/ground_truth_t.hpp"
+#include "gpilot/hand_obs_t.hpp"
+#include "hands/skin_model.hpp"
+#include "paths.hpp"
+#include "synthetic_world.hpp"
+
+namespace gpilot {
+namespace {
+
+const SyntheticWorld& tour_world() {
+  static const SyntheticWorld world(SyntheticParams{}, Scenario::load("tour"), 7);
+  return world;
+}
+
+// Scenario time at which the tour holds a gesture (the first keyframe with it).
+double tour_time_of(int gesture) {
+  const Scenario& s = tour_world().scenario();
+  const auto times = s.key_times();
+  for (size_t i = 0; i < times.size(); ++i)
+    if (s.keyframes()[i].state.gesture == gesture) return times[i];
+  ADD_FAILURE() << "tour has no " << gesture_name(gesture);
+  return 0.0;
+}
+
+cv::Rect2f grown(const cv::Rect2f& r, float px) { return {r.x - px, r.y - px, r.width + 2 * px, r.height + 2 * px}; }
+
+cv::Rect2f hand_box(const cv::Point2f& c, float size) { return {c.x - size / 2, c.y - size / 2, size, size}; }
+
+// Pixels of a label, and how many of them lie outside a rectangle.
+struct LabelCount {
+  int total = 0, outside = 0;
+};
+LabelCount count_label(const cv::Mat& labels, PartLabel label, const cv::Rect2f& inside) {
+  LabelCount c;
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      if (labels.at<uchar>(y, x) != static_cast<uchar>(label)) continue;
+      ++c.total;
+      if (!inside.contains(cv::Point2f(x + 0.5f, y + 0.5f))) ++c.outside;
+    }
+  return c;
+}
+
+struct ViewCase {
+  double distance_m, yaw_rad;
+};
+
+class TruthAgreesWithPicture : public ::testing::TestWithParam<ViewCase> {};
+
+TEST_P(TruthAgreesWithPicture, HandsInTheirBoxesFaceAtTheTopOfTheUserBox) {
+  const ViewCase vc = GetParam();
+  const SyntheticWorld& w = tour_world();
+  // GIVEN the drone at the given distance in front of the person (who stands 3 m north), yawed
+  const CameraPose cam{3.0 - vc.distance_m, 0.0, -1.5, vc.yaw_rad};
+  for (int gesture : {ground_truth_t::GESTURE_REST, ground_truth_t::GESTURE_OUT, ground_truth_t::GESTURE_CLOSER,
+                      ground_truth_t::GESTURE_DOWN}) {
+    SCOPED_TRACE(gesture_name(gesture));
+    cv::Mat labels;
+    const SyntheticFrame f = w.render(tour_time_of(gesture), 0, cam, &labels);
+    const SyntheticTruth& t = f.truth;
+    // THEN every pixel of each hand (in the picture) lies in its ground-truth hand square
+    const cv::Rect2f image(0, 0, 640, 480);
+    for (auto [label, centre] : {std::pair{PartLabel::RightHand, t.right_hand}, std::pair{PartLabel::LeftHand, t.left_hand}}) {
+      const cv::Rect2f box = hand_box(centre, t.hand_size);
+      if ((box & image) != box) continue;  // stretched out of the picture at 2 m
+      const LabelCount c = count_label(labels, label, grown(box, 1.0f));
+      EXPECT_GT(c.total, 20) << "hand hardly visible";
+      EXPECT_EQ(c.outside, 0) << c.outside << " of " << c.total << " hand pixels outside the hand box";
+    }
+    // the face box sits inside the top of the user box, and the whole head inside the user box
+    const cv::Rect2f& u = t.user_box;
+    EXPECT_TRUE((t.face_box & u) == t.face_box);
+    EXPECT_LT(t.face_box.y - u.y, 0.1f * u.height);
+    // (only the hair may rise above the box: its top is 0.25 face heights above the face box, the hair 0.53)
+    const cv::Rect2f with_hair(u.x, u.y - 0.35f * t.face_box.height, u.width, u.height);
+    EXPECT_EQ(count_label(labels, PartLabel::Head, grown(with_hair, 1.0f)).outside, 0);
+    // the torso is inside the user box apart from the hips below it
+    const LabelCount torso = count_label(labels, PartLabel::Torso, grown(u, 1.0f));
+    EXPECT_LT(torso.outside, torso.total / 20);
+    // the user box sits where the person is: its centre x within a face width of the face's centre
+    EXPECT_NEAR(u.x + u.width / 2, t.face_box.x + t.face_box.width / 2, 1e-3);
+    if (gesture == ground_truth_t::GESTURE_REST) {
+      // resting hands lie inside the user box, more than half a hand (0.092 box widths) from its sides
+      for (const auto& h : {t.right_hand, t.left_hand}) {
+        EXPECT_TRUE(u.contains(h));
+        EXPECT_GT(std::min(h.x - u.x, u.x + u.width - h.x), 0.1f * u.width);
+      }
+    }
+    if (gesture == ground_truth_t::GESTURE_OUT) {
+      // a stretched-out hand is far outside it (the user's right hand: the image's left)
+      EXPECT_LT(t.right_hand.x, u.x - 0.5f * u.width);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ThreeDistancesTwoYaws, TruthAgreesWithPicture,
+                         ::testing::Values(ViewCase{2.0, 0.0}, ViewCase{3.0, 0.0}, ViewCase{5.0, 0.0},
+                                           ViewCase{2.0, 0.2}, ViewCase{3.0, -0.2}, ViewCase{5.0, 0.2}));
+
+TEST(SyntheticWorld, DefaultCameraSeesThePersonFromThreeMetres) {
+  const SyntheticFrame f = tour_world().render(1.0, 0, std::nullopt);
+  EXPECT_EQ(f.bgr.cols, 640);
+  EXPECT_EQ(f.bgr.rows, 480);
+  EXPECT_EQ(f.bgr.type(), CV_8UC3);
+  // 0.17 m face at 3 m with f = 320 / tan(30 deg) = 554.3 px
+  EXPECT_NEAR(f.truth.face_box.width, 554.256 * 0.17 / 3.0, 0.5);
+  EXPECT_NEAR(f.truth.face_box.x + f.truth.face_box.width / 2, 320.0, 0.5);
+  EXPECT_FLOAT_EQ(f.truth.person_position.x, 3.0f);
+  EXPECT_FLOAT_EQ(f.truth.person_position.z, 0.0f);
+  EXPECT_DOUBLE_EQ(f.truth.camera.down, -1.5);
+}
+
+TEST(SyntheticWorld, ClosedLoopCloserIsLargerAndYawMovesThePersonAcross) {
+  const SyntheticWorld& w = tour_world();
+  const SyntheticTruth far = w.render(1.0, 0, CameraPose{0.0, 0.0, -1.5, 0.0}).truth;
+  const SyntheticTruth near = w.render(1.0, 0, CameraPose{1.5, 0.0, -1.5, 0.0}).truth;
+  // 3 m -> 1.5 m: twice as large
+  EXPECT_NEAR(near.face_box.width / far.face_box.width, 2.0, 0.02);
+  // yawing right (clockwise, positive) moves the person to the image's left, by f * tan(yaw)
+  const SyntheticTruth yawed = w.render(1.0, 0, CameraPose{0.0, 0.0, -1.5, 0.1}).truth;
+  const float cx_far = far.face_box.x + far.face_box.width / 2, cx_yawed = yawed.face_box.x + yawed.face_box.width / 2;
+  EXPECT_NEAR(cx_far - cx_yawed, 554.256 * std::tan(0.1), 2.0);
+  // climbing moves the person down in the image
+  const SyntheticTruth higher = w.render(1.0, 0, CameraPose{0.0, 0.0, -2.5, 0.0}).truth;
+  EXPECT_GT(higher.face_box.y, far.face_box.y + 50);
+}
+
+TEST(SyntheticWorld, ExpectedCommandsOfTheTourAreItsGestures) {
+  const SyntheticWorld& w = tour_world();
+  const auto times = w.scenario().key_times();
+  for (size_t i = 0; i < times.size(); ++i) {
+    const SyntheticTruth t = w.render(times[i], 0, std::nullopt).truth;
+    SCOPED_TRACE(std::to_string(times[i]) + " s " + gesture_name(t.gesture));
+    switch (t.gesture) {
+      case ground_truth_t::GESTURE_REST:
+        EXPECT_EQ(t.expected_kind, hand_obs_t::KIND_NONE);
+        EXPECT_EQ(t.expected_mode, gesture_cmd_t::MODE_HOVER);
+        break;
+      case ground_truth_t::GESTURE_OUT:
+        EXPECT_EQ(t.expected_kind, hand_obs_t::KIND_OUT);
+        EXPECT_EQ(t.expected_mode, gesture_cmd_t::MODE_FINE);
+        EXPECT_GT(std::fabs(t.expected_direction.x), 1.0f);  // more than a box width out
+        break;
+      case ground_truth_t::GESTURE_UP:
+        EXPECT_EQ(t.expected_mode, gesture_cmd_t::MODE_UP);
+        EXPECT_LT(t.expected_direction.y, 0.0f);
+        break;
+      case ground_truth_t::GESTURE_DOWN:
+        EXPECT_EQ(t.expected_mode, gesture_cmd_t::MODE_DOWN);
+        EXPECT_GT(t.expected_direction.y, 0.0f);
+        break;
+      case ground_truth_t::GESTURE_CLOSER:
+        EXPECT_EQ(t.expected_kind, hand_obs_t::KIND_FRONT);
+        EXPECT_EQ(t.expected_mode, gesture_cmd_t::MODE_CLOSER);
+        EXPECT_FLOAT_EQ(t.expected_direction.z, 1.0f);
+        break;
+      case ground_truth_t::GESTURE_FURTHER:
+        EXPECT_EQ(t.expected_kind, hand_obs_t::KIND_FRONT);
+        EXPECT_EQ(t.expected_mode, gesture_cmd_t::MODE_FURTHER);
+        EXPECT_FLOAT_EQ(t.expected_direction.z, -1.0f);
+        break;
+      default:
+        ADD_FAILURE() << "unknown gesture";
+    }
+  }
+}
+
+TEST(SyntheticWorld, RendersAreDeterministic) {
+  // GIVEN a scene with every per-frame random nuisance on
+  const Scenario s = Scenario::parse(
+      "keyframes: [{t: 0, noise_sigma: 6, shake_deg: 1, blur_px: 3, jpeg_quality: 70, distractor: true}]\n", "x");
+  const SyntheticWorld a(SyntheticParams{}, s, 11), b(SyntheticParams{}, s, 11), c(SyntheticParams{}, s, 12);
+  const CameraPose cam{0.5, 0.1, -1.6, 0.05};
+  const cv::Mat f1 = a.render(2.0, 50, cam).bgr, f2 = a.render(2.0, 50, cam).bgr, f3 = b.render(2.0, 50, cam).bgr;
+  // THEN the same inputs give the same bytes, from the same world and from a second one with the same seed
+  EXPECT_EQ(cv::norm(f1, f2, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(f1, f3, cv::NORM_INF), 0.0);
+  // and the noise really changes with the frame index and the seed
+  EXPECT_GT(cv::norm(f1, a.render(2.0, 51, cam).bgr, cv::NORM_L1), 0.0);
+  EXPECT_GT(cv::norm(f1, c.render(2.0, 50, cam).bgr, cv::NORM_L1), 0.0);
+}
+
+TEST(SyntheticWorld, MissingDataIsAClearError) {
+  SyntheticParams p;
+  p.face_image = "no/such/face.png";
+  try {
+    SyntheticWorld w(p, Scenario::load("tour"), 1);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no/such/face.png"), std::string::npos) << e.what();
+  }
+}
+
+// The person's colours against the project's trained skin model (data/skin/skin_model.yaml, hands stage):
+// hands are skin, clothes are not, and at rest nothing skin-coloured (the hair above the box included) lies
+// outside the user box in the hands stage's search rectangle (else Alg. 1 would see a stretched-out hand that is not there).
+TEST(SyntheticWorld, SkinModelSeesTheHandsAndNothingElse) {
+  const HandsParams hp;
+  const SkinClassifier skin(SkinModel::load(resolve_project_path(hp.skin.model)), hp.skin.threshold);
+  const SyntheticWorld& w = tour_world();
+  cv::Mat labels, mask;
+  const SyntheticFrame rest = w.render(tour_time_of(ground_truth_t::GESTURE_REST), 0, std::nullopt, &labels);
+  skin.classify(rest.bgr, mask);
+  int hand = 0, hand_skin = 0, cloth = 0, cloth_skin = 0, outside_skin = 0;
+  const cv::Rect2f& u = rest.truth.user_box;
+  const cv::Rect2f roi(u.x - hp.roi_extend_side * u.width, u.y - hp.roi_extend_top * u.height,
+                       u.width * (1 + 2 * hp.roi_extend_side), u.height * (1 + hp.roi_extend_top + hp.roi_extend_bottom));
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      const auto l = static_cast<PartLabel>(labels.at<uchar>(y, x));
+      const bool s = mask.at<uchar>(y, x) != 0;
+      const cv::Point2f p(x + 0.5f, y + 0.5f);
+      if (l == PartLabel::RightHand || l == PartLabel::LeftHand) ++hand, hand_skin += s;
+      if (l == PartLabel::Torso || l == PartLabel::Legs || l == PartLabel::Sleeve) ++cloth, cloth_skin += s;
+      if (s && roi.contains(p) && !u.contains(p)) ++outside_skin;
+    }
+  EXPECT_GT(hand_skin, 0.8 * hand) << hand_skin << " of " << hand;
+  EXPECT_LT(cloth_skin, 0.01 * cloth) << cloth_skin << " of " << cloth;
+  EXPECT_LE(outside_skin, hp.out_min_skin);
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,154 @@
+// Known answers of FHOG and DSST: feature layout on simple images, a textured scene moved by known
+// sub-pixel offsets and scaled by known factors, and identical boxes on a second run over the same frames.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "dsst.hpp"
+#include "fhog.hpp"
+#include "known_scene.hpp"
+
+namespace gpilot {
+namespace {
+
+const cv::Size kFrame(640, 480);
+
+TEST(Fhog, FlatImageHasNoFeatures) {
+  Fhog f;
+  std::vector<cv::Mat> out;
+  f.compute(cv::Mat(40, 48, CV_8UC3, cv::Scalar(90, 120, 200)), 4, out);
+  ASSERT_EQ(out.size(), 31u);
+  EXPECT_EQ(out[0].rows, 10);
+  EXPECT_EQ(out[0].cols, 12);
+  for (const auto& m : out) EXPECT_EQ(cv::countNonZero(m), 0);
+}
+
+TEST(Fhog, VerticalEdgeFillsTheHorizontalOrientation) {
+  // GIVEN dark left half, bright right half: the gradient points along +x (orientation bin 0).
+  cv::Mat img(32, 32, CV_8UC1, cv::Scalar(20));
+  img(cv::Rect(16, 0, 16, 32)).setTo(220);
+  Fhog f;
+  std::vector<cv::Mat> out;
+  f.compute(img, 4, out);
+  // THEN the cells at the edge respond in bin 0 (signed) and bin 18 (unsigned), not in others.
+  const int r = 4, c = 3;  // cell (4, 3) covers x 12..15, next to the edge at x 16
+  EXPECT_GT(out[0].at<float>(r, c), 0.1f);
+  EXPECT_GT(out[18].at<float>(r, c), 0.1f);
+  for (int o = 1; o < 18; ++o) EXPECT_LT(out[static_cast<size_t>(o)].at<float>(r, c), 1e-6f) << "bin " << o;
+  EXPECT_LT(out[9].at<float>(r, c), 1e-6f);  // the opposite direction (dark to bright to the left)
+  // and cells far from the edge are empty.
+  EXPECT_EQ(out[0].at<float>(r, 0), 0.0f);
+}
+
+TEST(Fhog, MirroredEdgeUsesTheOppositeSignedBinAndTheSameUnsignedOne) {
+  cv::Mat img(32, 32, CV_8UC1, cv::Scalar(220));
+  img(cv::Rect(16, 0, 16, 32)).setTo(20);
+  Fhog f;
+  std::vector<cv::Mat> out;
+  f.compute(img, 4, out);
+  EXPECT_GT(out[9].at<float>(4, 3), 0.1f);
+  EXPECT_LT(out[0].at<float>(4, 3), 1e-6f);
+  EXPECT_GT(out[18].at<float>(4, 3), 0.1f);
+}
+
+struct Truth {
+  cv::Point2d centre;
+  double scale;
+};
+
+// Runs DSST from a 80x120 box over frames of a texture moved by `truth`; returns the estimates.
+std::vector<DsstEstimate> run(const std::vector<Truth>& truth, const DsstParams& p = DsstParams{}) {
+  const cv::Mat tex = test::texture(cv::Size(1400, 1100), 7);
+  const cv::Point2d anchor(700, 550);
+  const cv::Size2d size0(80, 120);
+  Dsst dsst(p);
+  std::vector<DsstEstimate> out;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const cv::Mat frame = test::view(tex, anchor, truth[i].centre, truth[i].scale, kFrame);
+    if (i == 0) {
+      const cv::Size2d s(size0.width * truth[0].scale, size0.height * truth[0].scale);
+      dsst.init(frame, cv::Rect2d(truth[0].centre.x - s.width / 2, truth[0].centre.y - s.height / 2, s.width, s.height));
+      out.push_back(dsst.estimate());
+    } else {
+      out.push_back(dsst.update(frame));
+    }
+  }
+  return out;
+}
+
+TEST(Dsst, FollowsSubPixelMotionToWithinOnePixel) {
+  // GIVEN the texture moving by a different sub-pixel step each frame (up to 6 px per frame)
+  std::vector<Truth> truth;
+  cv::Point2d c(300.0, 240.0);
+  for (int i = 0; i < 40; ++i) {
+    truth.push_back({c, 1.0});
+    c += cv::Point2d(3.0 * std::sin(0.3 * i) + 0.37, 2.5 * std::cos(0.2 * i) - 0.41);
+  }
+  // WHEN tracked
+  const auto est = run(truth);
+  // THEN every centre is within 1 px of the truth and the scale within 2 %.
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const cv::Point2d e(est[i].box.x + est[i].box.width / 2, est[i].box.y + est[i].box.height / 2);
+    EXPECT_LT(cv::norm(e - truth[i].centre), 1.0) << "frame " << i << " at " << e << " truth " << truth[i].centre;
+    EXPECT_NEAR(est[i].scale, 1.0, 0.02) << "frame " << i;
+    if (i > 0) {
+      EXPECT_GT(est[i].psr, 8.0) << "frame " << i;
+    }
+  }
+}
+
+TEST(Dsst, FollowsScaleChangeToWithinTwoPercent) {
+  // GIVEN the texture growing 1 % per frame to 1.35x, then shrinking back to 0.9x, while drifting
+  std::vector<Truth> truth;
+  double s = 1.0;
+  cv::Point2d c(320.0, 240.0);
+  for (int i = 0; i < 30; ++i) {
+    truth.push_back({c, s});
+    s *= 1.01;
+    c += cv::Point2d(0.6, -0.3);
+  }
+  for (int i = 0; i < 40; ++i) {
+    truth.push_back({c, s});
+    s /= 1.011;
+    c += cv::Point2d(-0.4, 0.45);
+  }
+  const auto est = run(truth);
+  // THEN after a few frames to settle (the model follows by η per frame), the scale error stays < 2 %
+  // and the centre within 1 px.
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const cv::Point2d e(est[i].box.x + est[i].box.width / 2, est[i].box.y + est[i].box.height / 2);
+    EXPECT_LT(cv::norm(e - truth[i].centre), 1.0) << "frame " << i;
+    EXPECT_NEAR(est[i].scale / truth[i].scale, 1.0, 0.02) << "frame " << i << " scale " << est[i].scale;
+    EXPECT_NEAR(est[i].box.width / (80.0 * truth[i].scale), 1.0, 0.02) << "frame " << i;
+  }
+}
+
+TEST(Dsst, SameFramesGiveIdenticalBoxes) {
+  std::vector<Truth> truth;
+  for (int i = 0; i < 15; ++i) truth.push_back({cv::Point2d(300 + 1.3 * i, 200 + 0.7 * i), 1.0 + 0.004 * i});
+  const auto a = run(truth), b = run(truth);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].box.x, b[i].box.x);
+    EXPECT_EQ(a[i].box.y, b[i].box.y);
+    EXPECT_EQ(a[i].box.width, b[i].box.width);
+    EXPECT_EQ(a[i].psr, b[i].psr);
+  }
+}
+
+TEST(Dsst, RejectsBadInput) {
+  Dsst dsst{DsstParams{}};
+  const cv::Mat frame(480, 640, CV_8UC3, cv::Scalar(0));
+  EXPECT_THROW(dsst.init(cv::Mat(), cv::Rect2d(10, 10, 20, 20)), std::invalid_argument);
+  EXPECT_THROW(dsst.init(frame, cv::Rect2d(10, 10, 1, 20)), std::invalid_argument);
+  EXPECT_THROW(dsst.init(frame, cv::Rect2d(700, 10, 20, 20)), std::invalid_argument);
+  EXPECT_THROW(dsst.init(frame, cv::Rect2d(NAN, 10, 20, 20)), std::invalid_argument);
+  EXPECT_THROW(dsst.track(frame), std::logic_error);
+  dsst.init(frame, cv::Rect2d(100, 100, 40, 60));
+  EXPECT_THROW(dsst.track(cv::Mat(240, 320, CV_8UC3, cv::Scalar(0))), std::invalid_argument);
+  EXPECT_THROW(dsst.track(cv::Mat(480, 640, CV_32FC1, cv::Scalar(0))), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,332 @@
+// gpilot-eval-tracker: runs our tracker (and with --compare OpenCV's CSRT, KCF, legacy MOSSE and dlib's
+// correlation_tracker) over one sequence, lock-step on the same frames, and reports OTB's success AUC,
+// precision at 20 px, mean IoU, frames lost and the trackers' own frames per second.
+// Input: an OTB folder (img/ + groundtruth_rect.txt or init_rect.txt) or --log with CAMERA + GROUND_TRUTH.
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/tracking.hpp>
+#include <opencv2/tracking/tracking_legacy.hpp>
+
+#ifdef GPILOT_HAVE_DLIB
+#include <dlib/image_transforms/fhog.h>  // correlation_tracker.h uses it without including it
+#include <dlib/image_processing/correlation_tracker.h>
+#include <dlib/opencv/cv_image.h>
+#endif
+
+#include "dsst.hpp"
+#include "face_detector.hpp"
+#include "metrics.hpp"
+#include "sequence.hpp"
+#include "service_cli.hpp"
+#include "user_tracker.hpp"
+
+namespace gpilot {
+namespace {
+
+// CPU time of this thread, microseconds. The machine is shared: wall time would count other processes'
+// time slices; with --threads 1 every tracker (OpenCV's included) runs on this thread.
+int64_t thread_cpu_utime() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1000000 + ts.tv_nsec / 1000;
+}
+
+// One tracker under test. update() gives the box of the frame, or none when the tracker says it lost it.
+class Runner {
+ public:
+  explicit Runner(std::string name) : name_(std::move(name)) {}
+  virtual ~Runner() = default;
+  virtual void init(const cv::Mat& frame, const cv::Rect2d& box) = 0;
+  virtual std::optional<cv::Rect2d> update(const cv::Mat& frame) = 0;
+  const std::string& name() const { return name_; }
+
+  // Book-keeping of the evaluation.
+  cv::Rect2d last;
+  bool started = false;
+  int lost = 0;
+  int64_t update_us = 0;
+  int updates = 0;
+  std::vector<double> ious, errors, psr;
+
+ private:
+  std::string name_;
+};
+
+class UserTrackerRunner : public Runner {
+ public:
+  explicit UserTrackerRunner(const TrackerParams& p) : Runner("gpilot UserTracker"), t_(p) {}
+  void init(const cv::Mat& frame, const cv::Rect2d& box) override {
+    t_.set_box(box);
+    t_.process(frame);
+  }
+  std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
+    const TrackOutput o = t_.process(frame);
+    psr.push_back(o.confidence);
+    if (o.status != TrackStatus::kTracking) return std::nullopt;
+    return o.box;
+  }
+
+ private:
+  UserTracker t_;
+};
+
+class DsstRunner : public Runner {
+ public:
+  explicit DsstRunner(const DsstParams& p) : Runner("gpilot DSST (paper)"), d_(p) {}
+  void init(const cv::Mat& frame, const cv::Rect2d& box) override { d_.init(frame, box); }
+  std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
+    const DsstEstimate e = d_.update(frame);
+    psr.push_back(e.psr);
+    return e.box;
+  }
+
+ private:
+  Dsst d_;
+};
+
+class OpenCvRunner : public Runner {
+ public:
+  OpenCvRunner(std::string name, cv::Ptr<cv::Tracker> t) : Runner(std::move(name)), t_(std::move(t)) {}
+  void init(const cv::Mat& frame, const cv::Rect2d& box) override { t_->init(frame, box); }
+  std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
+    cv::Rect r;
+    if (!t_->update(frame, r)) return std::nullopt;
+    return cv::Rect2d(r);
+  }
+
+ private:
+  cv::Ptr<cv::Tracker> t_;
+};
+
+class MosseRunner : public Runner {
+ public:
+  MosseRunner() : Runner("OpenCV MOSSE (legacy)"), t_(cv::legacy::TrackerMOSSE::create()) {}
+  void init(const cv::Mat& frame, const cv::Rect2d& box) override { t_->init(frame, box); }
+  std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
+    cv::Rect2d r;
+    if (!t_->update(frame, r)) return std::nullopt;
+    return r;
+  }
+
+ private:
+  cv::Ptr<cv::legacy::TrackerMOSSE> t_;
+};
+
+#ifdef GPILOT_HAVE_DLIB
+class DlibRunner : public Runner {
+ public:
+  DlibRunner() : Runner("dlib correlation_tracker") {}
+  void init(const cv::Mat& frame, const cv::Rect2d& b) override {
+    t_.start_track(dlib::cv_image<dlib::bgr_pixel>(frame), dlib::drectangle(b.x, b.y, b.x + b.width - 1, b.y + b.height - 1));
+  }
+  std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
+    psr.push_back(t_.update(dlib::cv_image<dlib::bgr_pixel>(frame)));
+    const dlib::drectangle r = t_.get_position();
+    return cv::Rect2d(r.left(), r.top(), r.width(), r.height());
+  }
+
+ private:
+  dlib::correlation_tracker t_;
+};
+#endif
+
+std::string num(double v, int prec = 4) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(prec);
+  s << std::fixed << v;
+  return s.str();
+}
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    o += c;
+  }
+  return o;
+}
+
+struct Result {
+  std::string name;
+  TrackScores scores;
+  bool has_truth = false;
+  int lost = 0;
+  double fps = 0, ms = 0, psr_min = 0, psr_mean = 0;
+  cv::Rect2d final_box;
+};
+
+std::string result_fields(const Result& r) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::ostringstream s;
+  s << "\"success_auc\": " << num(r.has_truth ? r.scores.success_auc : nan)
+    << ", \"precision_20px\": " << num(r.has_truth ? r.scores.precision_20px : nan)
+    << ", \"mean_iou\": " << num(r.has_truth ? r.scores.mean_iou : nan) << ", \"frames_lost\": " << r.lost
+    << ", \"fps\": " << num(r.fps, 1) << ", \"ms_per_frame\": " << num(r.ms, 3) << ", \"final_box\": [" << num(r.final_box.x, 1)
+    << ", " << num(r.final_box.y, 1) << ", " << num(r.final_box.width, 1) << ", " << num(r.final_box.height, 1) << "]";
+  return s.str();
+}
+
+int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path, bool auto_init,
+             bool compare, bool json, const std::string& plot, int threads) {
+  cv::setNumThreads(threads);
+  const auto params = config.section<TrackerParams>("tracker");
+  std::unique_ptr<FrameSource> src = log_path.empty() ? open_otb(seq_dir) : open_lcm_log(log_path);
+
+  std::vector<std::unique_ptr<Runner>> runners;
+  runners.push_back(std::make_unique<UserTrackerRunner>(params));
+  runners.push_back(std::make_unique<DsstRunner>(params.dsst));
+  if (compare) {
+    runners.push_back(std::make_unique<OpenCvRunner>("OpenCV CSRT", cv::TrackerCSRT::create()));
+    runners.push_back(std::make_unique<OpenCvRunner>("OpenCV KCF", cv::TrackerKCF::create()));
+    runners.push_back(std::make_unique<MosseRunner>());
+#ifdef GPILOT_HAVE_DLIB
+    runners.push_back(std::make_unique<DlibRunner>());
+#else
+    std::fprintf(stderr, "dlib not found at build time (libdlib-dev): its correlation_tracker is left out\n");
+#endif
+  }
+
+  std::optional<FaceDetector> faces;
+  if (auto_init) faces.emplace(params);
+  std::string init_how = auto_init ? "face" : "ground_truth";
+  int frames = 0, truth_frames = 0, init_frame = -1;
+  EvalFrame f;
+  while (src->next(f)) {
+    ++frames;
+    if (frames % 50 == 0) std::fprintf(stderr, "frame %d\n", frames);
+    if (init_frame < 0) {
+      std::optional<cv::Rect2d> box = f.truth;
+      if (auto_init) {
+        box.reset();
+        if (auto d = faces->detect(f.image)) box = d->body;
+      }
+      if (!box && !auto_init && frames == 1) throw std::runtime_error("the first frame has no ground-truth box to start from");
+      if (box) {
+        init_frame = frames;
+        for (auto& r : runners) {
+          const int64_t t0 = thread_cpu_utime();
+          r->init(f.image, *box);
+          r->update_us += thread_cpu_utime() - t0;
+          r->last = *box;
+          r->started = true;
+        }
+      }
+      if (f.truth) {
+        ++truth_frames;
+        for (auto& r : runners) {
+          r->ious.push_back(box ? iou(*box, *f.truth) : 0.0);
+          r->errors.push_back(box ? centre_error(*box, *f.truth) : std::numeric_limits<double>::infinity());
+        }
+      }
+      continue;
+    }
+    if (f.truth) ++truth_frames;
+    for (auto& r : runners) {
+      const int64_t t0 = thread_cpu_utime();
+      const auto box = r->update(f.image);
+      r->update_us += thread_cpu_utime() - t0;
+      ++r->updates;
+      if (box)
+        r->last = *box;
+      else
+        ++r->lost;
+      if (f.truth) {
+        r->ious.push_back(box ? iou(*box, *f.truth) : (r->last.area() > 0 ? iou(r->last, *f.truth) : 0.0));
+        r->errors.push_back(centre_error(r->last, *f.truth));
+      }
+    }
+  }
+  if (frames == 0) throw std::runtime_error("the sequence has no frames");
+  if (init_frame < 0) throw std::runtime_error("no face found in any frame (--auto-init)");
+
+  std::vector<Result> results;
+  for (auto& r : runners) {
+    Result res;
+    res.name = r->name();
+    res.has_truth = truth_frames > 1;
+    res.scores = score(r->ious, r->errors);
+    res.lost = r->lost;
+    res.ms = r->updates ? r->update_us / 1000.0 / (r->updates + 1) : 0.0;  // + the init frame
+    res.fps = res.ms > 0 ? 1000.0 / res.ms : 0.0;
+    res.final_box = r->last;
+    if (!r->psr.empty()) {
+      res.psr_min = *std::min_element(r->psr.begin(), r->psr.end());
+      for (double v : r->psr) res.psr_mean += v / static_cast<double>(r->psr.size());
+    }
+    results.push_back(res);
+  }
+
+  if (!plot.empty() && truth_frames > 1) {
+    std::vector<PlotCurve> curves;
+    for (const auto& r : results) curves.push_back({r.name + " " + num(r.scores.success_auc, 3), r.scores.success});
+    write_success_plot(plot, "Success plot: " + src->name(), curves);
+  }
+
+  const Result& ours = results[0];
+  if (json) {
+    std::printf("{\"sequence\": \"%s\", \"frames\": %d, \"frames_with_truth\": %d, \"init\": \"%s\", \"init_frame\": %d, "
+                "\"threads\": %d, \"tracker\": \"%s\", %s, \"psr_min\": %s, \"psr_mean\": %s, \"trackers\": [",
+                json_escape(src->name()).c_str(), frames, truth_frames, init_how.c_str(), init_frame, threads,
+                ours.name.c_str(), result_fields(ours).c_str(), num(ours.psr_min, 2).c_str(), num(ours.psr_mean, 2).c_str());
+    for (size_t i = 0; i < results.size(); ++i)
+      std::printf("%s{\"name\": \"%s\", %s}", i ? ", " : "", results[i].name.c_str(), result_fields(results[i]).c_str());
+    std::printf("]}\n");
+    return 0;
+  }
+  std::printf("%s: %d frames (%d with ground truth), initialised from %s at frame %d, %d OpenCV thread(s)\n\n",
+              src->name().c_str(), frames, truth_frames, init_how.c_str(), init_frame, threads);
+  std::printf("%-26s %8s %9s %9s %6s %9s %9s\n", "tracker", "AUC", "prec@20", "mean IoU", "lost", "fps", "ms/frame");
+  for (const auto& r : results)
+    std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
+                num(r.has_truth ? r.scores.precision_20px : NAN, 3).c_str(), num(r.has_truth ? r.scores.mean_iou : NAN, 3).c_str(),
+                r.lost, r.fps, r.ms);
+  std::printf("\nours: PSR min %.2f, mean %.2f; final box %.1f %.1f %.1f %.1f\n", ours.psr_min, ours.psr_mean,
+              ours.final_box.x, ours.final_box.y, ours.final_box.width, ours.final_box.height);
+  if (results.size() > 2 && ours.has_truth) {
+    std::printf("\n%s against the anchors:\n", ours.name.c_str());
+    for (size_t i = 2; i < results.size(); ++i) {
+      const Result& a = results[i];
+      std::printf("  %-26s AUC %s (%+.3f), %.1fx its speed\n", a.name.c_str(),
+                  ours.scores.success_auc >= a.scores.success_auc ? "better" : "WORSE",
+                  ours.scores.success_auc - a.scores.success_auc, a.ms > 0 ? a.ms / ours.ms : 0.0);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace gpilot
+
+int main(int argc, char** argv) {
+  gpilot::ServiceCli cli("gpilot-eval-tracker",
+                         "Tracker evaluation on an OTB sequence folder or an LCM log (CAMERA + GROUND_TRUTH):\n"
+                         "success AUC, precision at 20 px, mean IoU, frames lost, frames per second.");
+  std::string seq, log, plot;
+  bool auto_init = false, compare = false, json = false;
+  int threads = 1;
+  auto& app = cli.app();
+  app.add_option("sequence", seq, "OTB-layout folder: img/*.jpg and groundtruth_rect.txt (1-based) or init_rect.txt (0-based)");
+  app.add_option("--log", log, "LCM log with CAMERA and GROUND_TRUTH instead of a folder");
+  app.add_flag("--auto-init", auto_init, "start from the face detector's body box instead of the first ground truth");
+  app.add_flag("--compare", compare, "also run OpenCV CSRT, KCF, MOSSE and dlib correlation_tracker on the same frames");
+  app.add_flag("--json", json, "print one JSON object on stdout");
+  app.add_option("--plot", plot, "write the success plot to this PNG");
+  app.add_option("--threads", threads, "OpenCV threads (default 1: the cost on one core; times are thread CPU time)");
+  return cli.run(argc, argv, [&](const gpilot::Config& config) {
+    if (seq.empty() == log.empty()) {
+      std::fprintf(stderr, "gpilot-eval-tracker: give a sequence folder or --log (one of them)\n");
+      return 2;
+    }
+    return gpilot::run_eval(config, seq, log, auto_init, compare, json, plot, threads);
+  });
+}

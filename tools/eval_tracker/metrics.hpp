@@ -1,0 +1,34 @@
+// OTB measures of a tracker's boxes against ground truth: success curve (fraction of frames with IoU above
+// each threshold 0, 0.05 .. 1) and its area (AUC), precision at 20 px centre error, mean IoU; and the
+// success plot as a PNG.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace gpilot {
+
+double iou(const cv::Rect2d& a, const cv::Rect2d& b);
+double centre_error(const cv::Rect2d& a, const cv::Rect2d& b);
+
+struct TrackScores {
+  std::vector<double> success;  //!< 21 rates at IoU thresholds 0, 0.05, .., 1 (OTB: IoU > threshold)
+  double success_auc = 0;       //!< mean of success, as OTB
+  double precision_20px = 0;    //!< fraction of frames with centre error <= 20 px
+  double mean_iou = 0;
+  int frames = 0;               //!< frames with ground truth
+};
+
+// ious and errors: one per frame with ground truth (a frame without a box: IoU 0, error infinite).
+TrackScores score(const std::vector<double>& ious, const std::vector<double>& errors);
+
+struct PlotCurve {
+  std::string label;
+  std::vector<double> success;
+};
+// Writes a success plot (rate against IoU threshold) to path; throws std::runtime_error if it cannot.
+void write_success_plot(const std::string& path, const std::string& title, const std::vector<PlotCurve>& curves);
+
+}  // namespace gpilot

@@ -1,0 +1,155 @@
+// gpilot-replay: runs one stage (or a chain) over an LCM log, faster than real time, through the very code
+// the service runs (the stage's start_*_service on a BusNode over memq://), and writes a new log with the
+// original inputs and the new outputs. --check compares the new outputs with the recorded ones.
+// This is how a bug seen in the field is reproduced on a desk.
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "decide/decide_service.hpp"
+#include "hands/hands_service.hpp"
+#include "service_cli.hpp"
+#include "tracker/tracker_service.hpp"
+
+namespace gpilot {
+namespace {
+
+struct StageEntry {
+  std::function<std::shared_ptr<void>(const Config&, BusNode&)> start;
+  std::vector<std::string> inputs, outputs;
+};
+
+const std::map<std::string, StageEntry>& stages() {
+  static const std::map<std::string, StageEntry> table = {
+      {"tracker", {start_tracker_service, {"CAMERA", "TRACKER_INIT"}, {"USER_TRACK"}}},
+      {"hands", {start_hands_service, {"CAMERA", "USER_TRACK"}, {"HAND_OBS"}}},
+      {"decide", {start_decide_service, {"HAND_OBS"}, {"GESTURE_CMD"}}},
+  };
+  return table;
+}
+
+struct Event {
+  int64_t timestamp;
+  std::string channel;
+  std::vector<uint8_t> data;
+};
+
+// Every gpilot message starts with the 8-byte type fingerprint, then utime and seq (big-endian int64).
+int64_t seq_of(const std::vector<uint8_t>& d) {
+  if (d.size() < 24) return -1;
+  int64_t v = 0;
+  for (int i = 16; i < 24; ++i) v = (v << 8) | d[i];
+  return v;
+}
+
+}  // namespace
+}  // namespace gpilot
+
+int main(int argc, char** argv) {
+  using namespace gpilot;
+  ServiceCli cli("gpilot-replay",
+                 "Run a stage's code over an LCM log, faster than real time; write a log with the original inputs and\n"
+                 "the new outputs; with --check, print where the new outputs differ from the recorded ones.\n"
+                 "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
+                 "decide (HAND_OBS -> GESTURE_CMD), or a chain such as tracker,hands,decide.");
+  std::string in_path, out_path, stage_arg;
+  bool check = false;
+  cli.app().add_option("log", in_path, "the recorded LCM log")->required();
+  cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide")->required();
+  cli.app().add_option("--out", out_path, "write the new log here");
+  cli.app().add_flag("--check", check, "compare the new outputs with the recorded ones (exit 1 on any difference)");
+  return cli.run(argc, argv, [&](const Config& config) -> int {
+    std::vector<std::string> chain;
+    std::stringstream ss(stage_arg);
+    for (std::string s; std::getline(ss, s, ',');) {
+      if (!stages().count(s)) throw std::invalid_argument("unknown stage '" + s + "' (tracker, hands, decide)");
+      chain.push_back(s);
+    }
+    std::set<std::string> outputs, inputs;
+    for (const auto& s : chain)
+      for (const auto& o : stages().at(s).outputs) outputs.insert(o);
+    for (const auto& s : chain)
+      for (const auto& i : stages().at(s).inputs)
+        if (!outputs.count(i)) inputs.insert(i);
+
+    lcm::LogFile in(in_path, "r");
+    if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
+    std::unique_ptr<lcm::LogFile> out;
+    if (!out_path.empty()) {
+      out = std::make_unique<lcm::LogFile>(out_path, "w");
+      if (!out->good()) throw std::runtime_error(out_path + ": cannot write log");
+    }
+    int64_t eventnum = 0;
+    auto write = [&](int64_t ts, const std::string& ch, const void* data, size_t size) {
+      if (!out) return;
+      lcm::LogEvent ev{};
+      ev.eventnum = eventnum++;
+      ev.timestamp = ts;
+      ev.channel = ch;
+      ev.datalen = static_cast<int32_t>(size);
+      ev.data = const_cast<void*>(data);
+      out->writeEvent(&ev);
+    };
+
+    BusNode node("gpilot-replay", "memq://");
+    std::vector<std::shared_ptr<void>> running;
+    for (const auto& s : chain) running.push_back(stages().at(s).start(config, node));
+    std::map<std::string, std::vector<std::vector<uint8_t>>> produced, recorded;
+    int64_t now_ts = 0;
+    for (const auto& o : outputs)
+      node.subscribe_raw(o, [&](const std::string& ch, const void* data, size_t size, int64_t) {
+        const auto* p = static_cast<const uint8_t*>(data);
+        produced[ch].emplace_back(p, p + size);
+        write(now_ts, ch, data, size);
+      });
+
+    int64_t n_events = 0, n_inputs = 0;
+    for (const lcm::LogEvent* ev = in.readNextEvent(); ev; ev = in.readNextEvent()) {
+      ++n_events;
+      now_ts = ev->timestamp;
+      const auto* p = static_cast<const uint8_t*>(ev->data);
+      if (outputs.count(ev->channel)) {
+        recorded[ev->channel].emplace_back(p, p + ev->datalen);
+        continue;
+      }
+      if (ev->channel == "HEALTH") continue;  // the live processes' health is not part of a replay
+      write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+      if (!inputs.count(ev->channel)) continue;
+      ++n_inputs;
+      node.publish_raw(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+      node.drain();
+      if (n_inputs % 200 == 0) std::fprintf(stderr, "\rgpilot-replay: %lld input messages", static_cast<long long>(n_inputs));
+    }
+    std::fprintf(stderr, "\rgpilot-replay: %lld events, %lld inputs to %s, rejected %lld\n", static_cast<long long>(n_events),
+                 static_cast<long long>(n_inputs), stage_arg.c_str(), static_cast<long long>(node.stats().rejected_count()));
+    int differences = 0;
+    for (const auto& o : outputs) {
+      const auto& a = produced[o];
+      const auto& b = recorded[o];
+      std::printf("%-12s new %6zu  recorded %6zu", o.c_str(), a.size(), b.size());
+      if (!check) {
+        std::printf("\n");
+        continue;
+      }
+      int diff = static_cast<int>(a.size() > b.size() ? a.size() - b.size() : b.size() - a.size());
+      std::vector<int64_t> first_seqs;
+      for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+        if (a[i] != b[i]) {
+          ++diff;
+          if (first_seqs.size() < 5) first_seqs.push_back(seq_of(b[i]));
+        }
+      std::printf("  differences %d", diff);
+      for (size_t i = 0; i < first_seqs.size(); ++i) std::printf("%s%lld", i ? ", " : "  (seq ", static_cast<long long>(first_seqs[i]));
+      std::printf("%s\n", first_seqs.empty() ? "" : ")");
+      differences += diff;
+    }
+    if (check) std::printf("%d differences\n", differences);
+    return check && differences ? 1 : 0;
+  });
+}
