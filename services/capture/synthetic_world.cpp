@@ -391,11 +391,18 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   }
 
   const FigurePose pose = pose_figure(dims_, s.right_arm, s.left_arm, s.step_m);
-  draw_person(out.bgr, labels, v, pose);
+  // A person behind the camera (the drone turned away or flew past) is not drawn, and has no boxes.
+  const bool in_front = v.depth({pose.step_x, dims_.waist_y, 0.0}) > 0.3;
+  if (in_front) draw_person(out.bgr, labels, v, pose);
   apply_nuisances(out.bgr, s, frame_index);
 
   // Ground truth.
   SyntheticTruth& t = out.truth;
+  const cv::Vec3d feet = v.world({pose.step_x, 0.0, 0.0});
+  t.person_position = cv::Point3f(float(feet[0]), float(feet[1]), float(feet[2]));
+  t.camera = cam;
+  t.gesture = s.gesture;
+  if (!in_front) return out;  // boxes and hands zero, expected NONE / HOVER
   const double half = 0.5 * dims_.face_box;
   const std::vector<cv::Point2d> face = {v.project({pose.step_x - half, dims_.face_top, 0.02}),
                                          v.project({pose.step_x + half, dims_.face_top, 0.02}),
@@ -412,14 +419,10 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), rules_);
   t.shoulder_centre = e.shoulder_centre;
   t.body_centre = e.body_centre;
-  t.gesture = s.gesture;
   t.expected_kind = e.kind;
   t.expected_vector = e.vector;
   t.expected_mode = e.mode;
   t.expected_direction = e.direction;
-  const cv::Vec3d feet = v.world({pose.step_x, 0.0, 0.0});
-  t.person_position = cv::Point3f(float(feet[0]), float(feet[1]), float(feet[2]));
-  t.camera = cam;
   return out;
 }
 

@@ -29,6 +29,8 @@
 //   the next keyframe's gesture half-way.
 // - expected_kind / expected_vector / expected_mode / expected_direction: the paper's Alg. 1/2/3 applied to the
 //   true hands and the true user box (gesture_truth.hpp lists the simplifications).
+// - a person behind the camera is not drawn; the boxes, points and hand_size are then 0 and the expected
+//   kind/mode NONE/HOVER.
 // - person_position: NED of the point between the feet (sideways step included); camera: the pose rendered
 //   from (the vehicle's, or the scenario's fixed one), without the shake nuisance.
 #pragma once

@@ -82,7 +82,8 @@ struct MavlinkParams {
   int target_system = 1;              //!< the autopilot's system id
   int target_component = 1;           //!< the autopilot's component id
   double heartbeat_hz = 1.0;          //!< our HEARTBEAT rate
-  bool px4_offboard_on_engage = true; //!< on ENGAGE, ask PX4 for OFFBOARD mode (MAV_CMD_DO_SET_MODE)
+  std::string autopilot = "px4";      //!< px4 or ardupilot: which flight mode ENGAGE asks for, how TAKEOFF is sent
+  bool set_mode_on_engage = true;     //!< on ENGAGE, ask for PX4 OFFBOARD / ArduPilot GUIDED (MAV_CMD_DO_SET_MODE)
 
   template <class V>
   void visit(V& v) {
@@ -92,7 +93,8 @@ struct MavlinkParams {
     v("target_system", target_system, 0, 255, "autopilot system id");
     v("target_component", target_component, 0, 255, "autopilot component id");
     v("heartbeat_hz", heartbeat_hz, 0.2, 10.0, "HEARTBEAT rate, Hz");
-    v("px4_offboard_on_engage", px4_offboard_on_engage, "on ENGAGE send DO_SET_MODE PX4 OFFBOARD");
+    v("autopilot", autopilot, "px4 or ardupilot (flight mode asked on ENGAGE, TAKEOFF altitude convention)");
+    v("set_mode_on_engage", set_mode_on_engage, "on ENGAGE send DO_SET_MODE: PX4 OFFBOARD or ArduPilot GUIDED");
   }
 };
 

@@ -112,6 +112,8 @@ class FlightService {
       } catch (const std::invalid_argument& e) {
         throw ConfigError(std::string("mavlink.endpoint: ") + e.what());
       }
+      if (mav_params_.autopilot != "px4" && mav_params_.autopilot != "ardupilot")
+        throw ConfigError("mavlink.autopilot: '" + mav_params_.autopilot + "' is not one of px4, ardupilot");
       session_.emplace(mav_params_);
     } else if (fp_.backend != "none") {
       throw ConfigError("flight.backend: '" + fp_.backend + "' is not one of sim, mavlink, none");
@@ -139,6 +141,7 @@ class FlightService {
     if (session_) {
       node_.every(1.0 / mav_params_.heartbeat_hz, [this] { link_->send(session_->heartbeat()); });
       node_.every(0.002, [this] { poll_mavlink(); });
+      node_.every(1.0, [this] { report_link(); });
       link_->send(session_->heartbeat());
     }
     node_.set_state(health_t::STATE_OK, "backend " + fp_.backend + ", not engaged");
@@ -194,7 +197,7 @@ class FlightService {
     if (session_ && in_.engaged) {
       link_->send(session_->setpoint(last_, in_.now));
       // PX4 accepts OFFBOARD only once setpoints are streaming: ask after a short run of them.
-      if (++setpoints_since_engage_ == 10 && mav_params_.px4_offboard_on_engage) link_->send(session_->px4_offboard());
+      if (++setpoints_since_engage_ == 10 && mav_params_.set_mode_on_engage) link_->send(session_->engage_mode());
     }
   }
 
@@ -220,6 +223,16 @@ class FlightService {
         node_.publish("VEHICLE_STATE", to_message(*state, vehicle_state_t::SOURCE_MAVLINK));
       }
     }
+  }
+
+  void report_link() {
+    const int64_t now = wall_utime();
+    if (!session_->heard_autopilot())
+      node_.set_state(health_t::STATE_DEGRADED, "no autopilot HEARTBEAT from " + mav_params_.endpoint);
+    else if (!in_.vehicle || now - in_.vehicle_received > kMicrosPerSecond)
+      node_.set_state(health_t::STATE_DEGRADED, "no LOCAL_POSITION_NED from " + mav_params_.endpoint + " for 1 s");
+    else
+      node_.set_state(health_t::STATE_OK, "autopilot at " + mav_params_.endpoint + (in_.engaged ? ", ENGAGED" : ""));
   }
 
   BusNode& node_;

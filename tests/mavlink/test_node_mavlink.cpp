@@ -12,6 +12,7 @@
 
 #include "flight_bridge.hpp"
 #include "mavlink/frame.hpp"
+#include "mavlink/hex.hpp"
 #include "mavlink/messages.hpp"
 #include "mavlink/session.hpp"
 
@@ -61,22 +62,6 @@ std::vector<std::string> run_peer(const std::string& args, const std::string& in
   EXPECT_EQ(pclose(p), 0) << cmd;
   unlink(path);
   return lines;
-}
-
-std::string hex(const std::vector<uint8_t>& b) {
-  static const char* d = "0123456789abcdef";
-  std::string s;
-  for (uint8_t v : b) {
-    s += d[v >> 4];
-    s += d[v & 15];
-  }
-  return s;
-}
-
-std::vector<uint8_t> unhex(const std::string& s) {
-  std::vector<uint8_t> b;
-  for (size_t i = 0; i + 1 < s.size(); i += 2) b.push_back(static_cast<uint8_t>(std::stoi(s.substr(i, 2), nullptr, 16)));
-  return b;
 }
 
 // The value text of "key": in one JSON line (numbers and short strings; enough for the peer's flat output).
@@ -140,15 +125,18 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
 
   MavlinkSession s{MavlinkParams{}};
   std::string input;
-  input += hex(s.heartbeat()) + "\n";
+  input += to_hex(s.heartbeat()) + "\n";
   s.setpoint(sp, 1000000);
-  input += hex(s.setpoint(sp, 1250000)) + "\n";
-  input += hex(s.arm(true)) + "\n";
-  input += hex(s.takeoff(2.5f)) + "\n";
-  input += hex(s.land()) + "\n";
-  input += hex(s.px4_offboard()) + "\n";
+  input += to_hex(s.setpoint(sp, 1250000)) + "\n";
+  input += to_hex(s.arm(true)) + "\n";
+  input += to_hex(s.takeoff(2.5f)) + "\n";
+  input += to_hex(s.land()) + "\n";
+  input += to_hex(s.engage_mode()) + "\n";
+  MavlinkParams ardupilot;
+  ardupilot.autopilot = "ardupilot";
+  input += to_hex(MavlinkSession(ardupilot).takeoff(2.5f)) + "\n";
   const auto out = run_peer("decode", input);
-  ASSERT_EQ(out.size(), 7u);  // 6 packets + summary
+  ASSERT_EQ(out.size(), 8u);  // 7 packets + summary
 
   const std::string& hb = out[0];
   EXPECT_EQ(field(hb, "msg"), "\"HEARTBEAT\"");
@@ -185,7 +173,7 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   EXPECT_EQ(num(arm, "targetComponent"), 1);
   EXPECT_EQ(num(arm, "confirmation"), 0);
   EXPECT_EQ(num(out[3], "command"), 22);
-  EXPECT_EQ(num(out[3], "param7"), 2.5);
+  EXPECT_EQ(field(out[3], "param7"), "null");  // PX4: its own take-off altitude (param7 would be AMSL)
   EXPECT_EQ(field(out[3], "param4"), "null");  // NaN: the autopilot's default yaw (JSON has no NaN)
   EXPECT_EQ(num(out[4], "command"), 21);
   EXPECT_EQ(num(out[5], "command"), 176);
@@ -193,7 +181,9 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   EXPECT_EQ(num(out[5], "param2"), 6);
 
   EXPECT_NE(out.back().find("\"summary\""), std::string::npos);
-  EXPECT_EQ(num(out.back(), "valid"), 6);
+  EXPECT_EQ(num(out[6], "command"), 22);
+  EXPECT_EQ(num(out[6], "param7"), 2.5);  // ArduPilot: metres above home
+  EXPECT_EQ(num(out.back(), "valid"), 7);
   EXPECT_EQ(num(out.back(), "invalid"), 0);
 }
 
@@ -204,7 +194,7 @@ TEST(NodeMavlink, RejectsOurFrameWithACorruptedByteAsWeDo) {
   sp.velocity[1] = -0.5;
   auto bytes = s.setpoint(sp, 0);
   bytes[20] ^= 0x01;
-  const auto out = run_peer("decode", hex(bytes) + "\n");
+  const auto out = run_peer("decode", to_hex(bytes) + "\n");
   ASSERT_EQ(out.size(), 1u);  // the summary only: no packet
   EXPECT_EQ(num(out[0], "valid"), 0);
   EXPECT_EQ(num(out[0], "crcErrors"), 1);
@@ -232,7 +222,7 @@ TEST(NodeMavlink, WeDecodeWhatItEncodes) {
   ASSERT_EQ(out.size(), 5u);
   std::vector<uint8_t> datagram;
   for (const auto& line : out) {
-    const auto b = unhex(line);
+    const auto b = from_hex(line);
     datagram.insert(datagram.end(), b.begin(), b.end());
   }
   MavlinkSession s{MavlinkParams{}};

@@ -109,6 +109,7 @@ constexpr uint16_t kMavCmdNavTakeoff = 22;
 constexpr uint16_t kMavCmdDoSetMode = 176;
 constexpr uint16_t kMavCmdComponentArmDisarm = 400;
 constexpr uint8_t kPx4CustomMainModeOffboard = 6;
+constexpr uint8_t kArduCopterModeGuided = 4;
 // Velocity and yaw rate only: ignore position (1|2|4), acceleration (64|128|256) and yaw (1024).
 constexpr uint16_t kTypeMaskVelocityYawRate = 1 | 2 | 4 | 64 | 128 | 256 | 1024;
 

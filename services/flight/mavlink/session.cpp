@@ -65,8 +65,8 @@ std::vector<uint8_t> MavlinkSession::arm(bool on) {
 
 std::vector<uint8_t> MavlinkSession::takeoff(float altitude_m) {
   const float nan = std::nanf("");
-  // NaN: "use the autopilot's default" for pitch, yaw, latitude and longitude.
-  return command_long(kMavCmdNavTakeoff, {0, 0, 0, nan, nan, nan, altitude_m});
+  // NaN: "use the autopilot's default" for yaw, latitude and longitude (and PX4's altitude, see the header).
+  return command_long(kMavCmdNavTakeoff, {0, 0, 0, nan, nan, nan, ardupilot() ? altitude_m : nan});
 }
 
 std::vector<uint8_t> MavlinkSession::land() {
@@ -74,8 +74,9 @@ std::vector<uint8_t> MavlinkSession::land() {
   return command_long(kMavCmdNavLand, {0, 0, 0, nan, nan, nan, nan});
 }
 
-std::vector<uint8_t> MavlinkSession::px4_offboard() {
-  return command_long(kMavCmdDoSetMode, {kMavModeFlagCustomModeEnabled, kPx4CustomMainModeOffboard, 0, 0, 0, 0, 0});
+std::vector<uint8_t> MavlinkSession::engage_mode() {
+  const float mode = ardupilot() ? kArduCopterModeGuided : kPx4CustomMainModeOffboard;
+  return command_long(kMavCmdDoSetMode, {kMavModeFlagCustomModeEnabled, mode, 0, 0, 0, 0, 0});
 }
 
 std::optional<VehicleState> MavlinkSession::on_datagram(const uint8_t* data, size_t n, int64_t receive_utime) {

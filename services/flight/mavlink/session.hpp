@@ -23,9 +23,12 @@ class MavlinkSession {
   std::vector<uint8_t> setpoint(const Setpoint& sp, int64_t now_utime);
   std::vector<uint8_t> command_long(uint16_t command, const float (&param)[7]);
   std::vector<uint8_t> arm(bool on);
-  std::vector<uint8_t> takeoff(float altitude_m);  // above the take-off point is the autopilot's business: param7
+  // ArduPilot reads param7 as metres above home; PX4 as AMSL, so for PX4 param7 is NaN (its MIS_TAKEOFF_ALT).
+  std::vector<uint8_t> takeoff(float altitude_m);
   std::vector<uint8_t> land();
-  std::vector<uint8_t> px4_offboard();
+  // The mode that follows our setpoints: PX4 OFFBOARD or ArduPilot GUIDED.
+  std::vector<uint8_t> engage_mode();
+  bool ardupilot() const { return params_.autopilot == "ardupilot"; }
 
   // One received datagram: the latest vehicle state if a LOCAL_POSITION_NED from the target system was in it.
   std::optional<VehicleState> on_datagram(const uint8_t* data, size_t n, int64_t receive_utime);

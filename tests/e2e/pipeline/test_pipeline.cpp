@@ -88,7 +88,7 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
                                      "--var", "source_flag=--synthetic",
                                      "--var", "source=" + std::string(GPILOT_SOURCE_DIR) + "/deploy/scenarios/" + scenario + ".yaml",
                                      "--var", "capture_extra=", "--var", "backend=sim",
-                                     "--var", "mavlink=udp:127.0.0.1:14540", "--var", "log=" + log,
+                                     "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=" + log,
                                      "--var", "video_out=" + dir + "/annotated.mp4"};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());

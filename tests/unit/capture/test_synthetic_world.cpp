@@ -133,6 +133,21 @@ TEST(SyntheticWorld, ClosedLoopCloserIsLargerAndYawMovesThePersonAcross) {
   EXPECT_GT(higher.face_box.y, far.face_box.y + 50);
 }
 
+TEST(SyntheticWorld, APersonBehindTheCameraIsNotDrawn) {
+  const SyntheticWorld& w = tour_world();
+  // GIVEN the drone turned away from the person (yaw 180 deg), and one that flew past them
+  for (const CameraPose cam : {CameraPose{0.0, 0.0, -1.5, M_PI}, CameraPose{5.0, 0.0, -1.5, 0.0}}) {
+    cv::Mat labels;
+    const SyntheticFrame f = w.render(tour_time_of(ground_truth_t::GESTURE_OUT), 0, cam, &labels);
+    // THEN no person pixel, empty boxes, no gesture observed
+    EXPECT_EQ(cv::countNonZero(labels), 0);
+    EXPECT_EQ(f.truth.user_box.area(), 0.0f);
+    EXPECT_EQ(f.truth.expected_kind, hand_obs_t::KIND_NONE);
+    EXPECT_EQ(f.truth.expected_mode, gesture_cmd_t::MODE_HOVER);
+    EXPECT_EQ(f.truth.gesture, ground_truth_t::GESTURE_OUT);
+  }
+}
+
 TEST(SyntheticWorld, ExpectedCommandsOfTheTourAreItsGestures) {
   const SyntheticWorld& w = tour_world();
   const auto times = w.scenario().key_times();

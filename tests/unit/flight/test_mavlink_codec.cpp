@@ -7,28 +7,13 @@
 
 #include "mavlink/crc.hpp"
 #include "mavlink/frame.hpp"
+#include "mavlink/hex.hpp"
 #include "mavlink/messages.hpp"
 #include "mavlink/session.hpp"
 #include "mavlink/udp_link.hpp"
 
 namespace gpilot::mavlink {
 namespace {
-
-std::string hex(const std::vector<uint8_t>& b) {
-  static const char* d = "0123456789abcdef";
-  std::string s;
-  for (uint8_t v : b) {
-    s += d[v >> 4];
-    s += d[v & 15];
-  }
-  return s;
-}
-
-std::vector<uint8_t> unhex(const std::string& s) {
-  std::vector<uint8_t> b;
-  for (size_t i = 0; i + 1 < s.size(); i += 2) b.push_back(static_cast<uint8_t>(std::stoi(s.substr(i, 2), nullptr, 16)));
-  return b;
-}
 
 const char* kHeartbeatHex = "fd0900000001010000000400000002035104037bae";
 const char* kSetpointHex =
@@ -61,7 +46,7 @@ TEST(MavlinkFrame, HeartbeatMatchesTheReferenceBytes) {
   f.compid = 1;
   f.msgid = Heartbeat::kId;
   f.payload = pack(h);
-  EXPECT_EQ(hex(encode_frame(f)), kHeartbeatHex);
+  EXPECT_EQ(to_hex(encode_frame(f)), kHeartbeatHex);
 }
 
 TEST(MavlinkFrame, SetpointMatchesTheReferenceBytes) {
@@ -82,12 +67,12 @@ TEST(MavlinkFrame, SetpointMatchesTheReferenceBytes) {
   f.compid = 1;
   f.msgid = SetPositionTargetLocalNed::kId;
   f.payload = pack(m);
-  EXPECT_EQ(hex(encode_frame(f)), kSetpointHex);
+  EXPECT_EQ(to_hex(encode_frame(f)), kSetpointHex);
 }
 
 TEST(MavlinkFrame, ParsesTheReferenceBytesFieldByField) {
   FrameParser p;
-  const auto frames = parse_all(p, unhex(std::string(kHeartbeatHex) + kSetpointHex));
+  const auto frames = parse_all(p, from_hex(std::string(kHeartbeatHex) + kSetpointHex));
   ASSERT_EQ(frames.size(), 2u);
   const Heartbeat h = unpack_heartbeat(frames[0].payload);
   EXPECT_EQ(h.type, 2);
@@ -170,7 +155,7 @@ TEST(MavlinkFrame, RoundTripsEveryMessage) {
 
 TEST(MavlinkFrame, CorruptedBytesAreRejectedAndCounted) {
   // Every single-byte corruption after the magic of a valid frame must not yield that frame unchanged.
-  const auto good = unhex(kSetpointHex);
+  const auto good = from_hex(kSetpointHex);
   int accepted_wrong = 0;
   for (size_t i = 1; i < good.size(); ++i) {
     auto bad = good;
@@ -185,9 +170,9 @@ TEST(MavlinkFrame, CorruptedBytesAreRejectedAndCounted) {
 }
 
 TEST(MavlinkFrame, BadCrcIsCountedAndTheNextFrameStillParses) {
-  auto bytes = unhex(kHeartbeatHex);
+  auto bytes = from_hex(kHeartbeatHex);
   bytes[12] ^= 0xFF;  // in the payload
-  const auto next = unhex(kSetpointHex);
+  const auto next = from_hex(kSetpointHex);
   bytes.insert(bytes.end(), next.begin(), next.end());
   FrameParser p;
   const auto frames = parse_all(p, bytes);
@@ -199,18 +184,18 @@ TEST(MavlinkFrame, BadCrcIsCountedAndTheNextFrameStillParses) {
 TEST(MavlinkFrame, WrongLengthUnknownIdSignedAndGarbageAreCounted) {
   FrameParser p;
   // HEARTBEAT claiming 10 payload bytes (it has 9)
-  auto too_long = unhex(kHeartbeatHex);
+  auto too_long = from_hex(kHeartbeatHex);
   too_long[1] = 10;
   parse_all(p, too_long);
   p.end_of_datagram();
   EXPECT_EQ(p.counts().bad_length, 1);
   // an id we do not know (SYS_STATUS = 1): skipped whole, counted once
-  auto unknown = unhex(kHeartbeatHex);
+  auto unknown = from_hex(kHeartbeatHex);
   unknown[7] = 1;
   EXPECT_TRUE(parse_all(p, unknown).empty());
   EXPECT_EQ(p.counts().unknown_id, 1);
   // a signed frame: 13 signature bytes after the CRC, flag 0x01
-  auto sig = unhex(kHeartbeatHex);
+  auto sig = from_hex(kHeartbeatHex);
   sig[2] = kIncompatSigned;
   const uint16_t crc = crc_accumulate(50, crc_x25(sig.data() + 1, sig.size() - 3));
   sig[sig.size() - 2] = static_cast<uint8_t>(crc);
@@ -220,10 +205,10 @@ TEST(MavlinkFrame, WrongLengthUnknownIdSignedAndGarbageAreCounted) {
   EXPECT_EQ(p.counts().unsupported, 1);
   // garbage before a good frame is skipped; a datagram that ends inside a frame is truncated
   const int64_t skipped_before = p.counts().skipped_bytes;
-  auto g = unhex("0102fe03" + std::string(kHeartbeatHex));
+  auto g = from_hex("0102fe03" + std::string(kHeartbeatHex));
   EXPECT_EQ(parse_all(p, g).size(), 1u);
   EXPECT_EQ(p.counts().skipped_bytes - skipped_before, 4);
-  auto cut = unhex(kSetpointHex);
+  auto cut = from_hex(kSetpointHex);
   cut.resize(30);
   EXPECT_TRUE(parse_all(p, cut).empty());
   p.end_of_datagram();
@@ -313,12 +298,17 @@ TEST(MavlinkSession, CommandsCarryTheirMavCmd) {
   EXPECT_EQ(one(s.arm(false)).param[0], 0.0f);
   const CommandLong t = one(s.takeoff(3.0f));
   EXPECT_EQ(t.command, 22);
-  EXPECT_EQ(t.param[6], 3.0f);
+  EXPECT_TRUE(std::isnan(t.param[6]));  // PX4 reads param7 as AMSL: its own take-off altitude instead
   EXPECT_EQ(one(s.land()).command, 21);
-  const CommandLong m = one(s.px4_offboard());
+  const CommandLong m = one(s.engage_mode());
   EXPECT_EQ(m.command, 176);
   EXPECT_EQ(m.param[0], 1.0f);
-  EXPECT_EQ(m.param[1], 6.0f);
+  EXPECT_EQ(m.param[1], 6.0f);  // PX4 main mode OFFBOARD
+  MavlinkParams ap;
+  ap.autopilot = "ardupilot";
+  MavlinkSession a(ap);
+  EXPECT_EQ(one(a.takeoff(3.0f)).param[6], 3.0f);  // ArduPilot: metres above home
+  EXPECT_EQ(one(a.engage_mode()).param[1], 4.0f);  // Copter GUIDED
 }
 
 TEST(MavlinkEndpoint, ParsesUdpHostPortAndRejectsTheRest) {

@@ -72,7 +72,7 @@ TEST(ServiceSet, ShippedFileParsesWithRunVariables) {
   ss << in.rdbuf();
   const auto s = parse_service_set(ss.str(), {{"lcm_url", "u"}, {"config", "c"}, {"source_flag", "--synthetic"},
                                               {"source", "tour"}, {"capture_extra", ""}, {"backend", "sim"},
-                                              {"mavlink", "udp:127.0.0.1:14540"}, {"log", "l"}, {"video_out", "v"}});
+                                              {"mavlink", "udp:127.0.0.1:14580"}, {"log", "l"}, {"video_out", "v"}});
   ASSERT_GE(s.size(), 6u);
   EXPECT_EQ(s.front().name, "lcm-logger");  // records from the first message
   EXPECT_EQ(s.back().name, "gpilot-capture");  // frames flow only once every stage listens

@@ -1,0 +1,218 @@
+// The capture loop (see capture_service.hpp): one source, real-time pacing on the monotonic clock while the
+// bus is served between frames, and clear HEALTH states for a source that ends, is lost or cannot open.
+#include "capture_service.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "capture_params.hpp"
+#include "clock.hpp"
+#include "frame_sources.hpp"
+#include "gpilot/ground_truth_t.hpp"
+#include "gpilot/vehicle_state_t.hpp"
+#include "image_codec.hpp"
+#include "synthetic_world.hpp"
+
+namespace gpilot {
+namespace {
+
+ground_truth_t to_message(const SyntheticTruth& t, int64_t utime, int64_t seq) {
+  ground_truth_t m{};
+  m.utime = utime;
+  m.seq = seq;
+  const auto box = [](const cv::Rect2f& r, float* out) { out[0] = r.x, out[1] = r.y, out[2] = r.width, out[3] = r.height; };
+  const auto pt = [](const cv::Point2f& p, float* out) { out[0] = p.x, out[1] = p.y; };
+  box(t.user_box, m.user_box);
+  box(t.face_box, m.face_box);
+  pt(t.shoulder_centre, m.shoulder_centre);
+  pt(t.body_centre, m.body_centre);
+  pt(t.left_hand, m.left_hand);
+  pt(t.right_hand, m.right_hand);
+  m.hand_size = t.hand_size;
+  m.gesture = static_cast<int8_t>(t.gesture);
+  m.expected_kind = static_cast<int8_t>(t.expected_kind);
+  pt(t.expected_vector, m.expected_vector);
+  m.expected_mode = static_cast<int8_t>(t.expected_mode);
+  m.expected_direction[0] = t.expected_direction.x;
+  m.expected_direction[1] = t.expected_direction.y;
+  m.expected_direction[2] = t.expected_direction.z;
+  m.person_position[0] = t.person_position.x;
+  m.person_position[1] = t.person_position.y;
+  m.person_position[2] = t.person_position.z;
+  m.camera_position[0] = static_cast<float>(t.camera.north);
+  m.camera_position[1] = static_cast<float>(t.camera.east);
+  m.camera_position[2] = static_cast<float>(t.camera.down);
+  m.camera_yaw = static_cast<float>(t.camera.yaw);
+  return m;
+}
+
+void say(const BusNode& node, const std::string& what) { std::fprintf(stderr, "%s: %s\n", node.name().c_str(), what.c_str()); }
+
+// One frame from whichever source: the frame, its utime and (synthetic world) its ground truth.
+struct Produced {
+  cv::Mat bgr;
+  int64_t utime = 0;
+  std::optional<SyntheticTruth> truth;
+};
+
+}  // namespace
+
+int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
+  const CaptureParams p = config.section<CaptureParams>("capture");
+  const int8_t format = pixel_format_from_name(p.pixel_format);
+  if (format < 0) throw ConfigError("capture.pixel_format: '" + p.pixel_format + "' is not BGR8, GRAY8 or JPEG");
+
+  std::optional<CameraPose> vehicle;  // the latest VEHICLE_STATE: the synthetic camera flies with it
+  node.subscribe<vehicle_state_t>("VEHICLE_STATE", [&vehicle](const vehicle_state_t& m, int64_t) {
+    vehicle = CameraPose{m.position[0], m.position[1], m.position[2], m.attitude[2]};
+  });
+  node.every(1.0, [&node] { node.publish_health(); });
+
+  // Open the source; one producer per kind.
+  std::unique_ptr<SyntheticWorld> world;
+  std::unique_ptr<FrameSource> file;
+  std::unique_ptr<CameraSource> camera;
+  std::function<ReadStatus(int64_t, Produced&, std::string&)> produce;
+  double fps = 0.0;
+  std::string opened;
+  try {
+    switch (o.kind) {
+      case CaptureOptions::Kind::Synthetic: {
+        TruthRules rules;
+        rules.tracker = config.section<TrackerParams>("tracker");
+        rules.hands = config.section<HandsParams>("hands");
+        rules.decide = config.section<DecideParams>("decide");
+        world = std::make_unique<SyntheticWorld>(p.synthetic, Scenario::load(o.source), o.seed, rules);
+        fps = p.synthetic.fps;
+        char what[512];
+        std::snprintf(what, sizeof what, "synthetic scenario '%s' (%s, %g s @ %g fps)", world->scenario().name().c_str(),
+                      world->scenario().origin().c_str(), world->scenario().duration_s(), fps);
+        opened = what;
+        produce = [&](int64_t seq, Produced& out, std::string& why) {
+          const double t = static_cast<double>(seq) / fps;  // scenario time of this frame
+          if (t >= world->scenario().duration_s()) {
+            why = "end of scenario '" + world->scenario().name() + "' after " + std::to_string(seq) + " frames";
+            return ReadStatus::End;
+          }
+          SyntheticFrame f = world->render(t, seq, vehicle);
+          out.utime = wall_utime();
+          out.bgr = std::move(f.bgr);
+          out.truth = f.truth;
+          return ReadStatus::Frame;
+        };
+        break;
+      }
+      case CaptureOptions::Kind::Video:
+      case CaptureOptions::Kind::Images: {
+        if (o.kind == CaptureOptions::Kind::Video)
+          file = std::make_unique<VideoFileSource>(o.source, o.loop);
+        else
+          file = std::make_unique<ImageFolderSource>(o.source, p.fps, o.loop);
+        fps = file->fps();
+        opened = file->describe();
+        produce = [&](int64_t, Produced& out, std::string& why) {
+          const ReadStatus s = file->read(out.bgr, why);
+          out.utime = seconds_to_utime(file->media_time_s());
+          return s;
+        };
+        break;
+      }
+      case CaptureOptions::Kind::Camera: {
+        // A camera that is not there yet is not an error: the loop reports it lost and retries.
+        camera = std::make_unique<CameraSource>(o.camera_index, p.width, p.height, p.fps);
+        std::string why;
+        opened = camera->open(why) ? camera->describe() : why;
+        fps = camera->fps();
+        produce = [&](int64_t, Produced& out, std::string& why) {
+          const ReadStatus s = camera->read(out.bgr, why);
+          out.utime = wall_utime();
+          return s;
+        };
+        break;
+      }
+    }
+  } catch (const std::exception& e) {
+    // A source that cannot open: said on stderr and in HEALTH, exit status 1.
+    say(node, std::string("error: ") + e.what());
+    node.set_state(health_t::STATE_ERROR, e.what());
+    node.publish_health();
+    return 1;
+  }
+  if (!camera || camera->is_open())
+    say(node, "publishing CAMERA" + std::string(world ? " and GROUND_TRUTH" : "") + " from " + opened);
+  node.set_state(health_t::STATE_OK, opened);
+  node.publish_health();
+
+  const int64_t max_frames = o.duration_s > 0 ? static_cast<int64_t>(std::ceil(o.duration_s * fps - 1e-9)) : -1;
+  const int64_t period = std::max<int64_t>(1, seconds_to_utime(1.0 / fps));
+  int64_t next_tick = monotonic_utime();
+  int64_t seq = 0;
+  bool degraded = false;
+  auto finish = [&](const std::string& why) {
+    say(node, why);
+    node.set_state(health_t::STATE_STOPPING, why);
+    node.publish_health();
+    return 0;
+  };
+  // Serves the bus (VEHICLE_STATE, timers) until the monotonic clock reaches `until`.
+  auto serve_until = [&](int64_t until) {
+    for (int64_t now = monotonic_utime(); now < until && !node.stopping(); now = monotonic_utime())
+      node.spin_once(static_cast<int>(std::max<int64_t>(0, (until - now) / 1000)));
+  };
+
+  while (!node.stopping()) {
+    if (max_frames >= 0 && seq >= max_frames) return finish("--duration reached after " + std::to_string(seq) + " frames");
+    Produced f;
+    std::string why;
+    switch (produce(seq, f, why)) {
+      case ReadStatus::Frame: {
+        const image_t img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality);
+        node.publish("CAMERA", img);
+        if (f.truth) node.publish("GROUND_TRUTH", to_message(*f.truth, f.utime, seq));
+        ++seq;
+        if (degraded) {
+          degraded = false;
+          opened = camera ? camera->describe() : opened;
+          say(node, "source back: " + opened);
+          node.set_state(health_t::STATE_OK, opened);
+        }
+        break;
+      }
+      case ReadStatus::Skip:
+        say(node, why);
+        node.reject(why);
+        break;
+      case ReadStatus::End:
+        return finish(why);
+      case ReadStatus::Lost: {
+        char every[64];
+        std::snprintf(every, sizeof every, "; retrying every %g s", p.camera_retry_s);
+        const std::string detail = why + every;
+        if (!degraded) say(node, detail);
+        degraded = true;
+        node.set_state(health_t::STATE_DEGRADED, detail);
+        serve_until(monotonic_utime() + seconds_to_utime(p.camera_retry_s));
+        std::string reopen_why;
+        if (camera && camera->open(reopen_why)) say(node, "camera reopened: " + camera->describe());
+        next_tick = monotonic_utime();
+        continue;
+      }
+    }
+    if (camera || o.as_fast_as_possible) {
+      // No pacing here (a camera paces itself: read() blocks until its next frame): serve what is queued.
+      node.drain();
+      node.spin_once(0);
+    } else {
+      next_tick += period;
+      const int64_t now = monotonic_utime();
+      if (now - next_tick > 10 * period) next_tick = now;  // far behind (a stall): no burst to catch up
+      serve_until(next_tick);
+    }
+  }
+  return finish("stopped by signal after " + std::to_string(seq) + " frames");
+}
+
+}  // namespace gpilot

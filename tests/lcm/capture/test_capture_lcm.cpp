@@ -1,0 +1,139 @@
+// gpilot-capture as a real process on real LCM: the synthetic world at 25 fps in real time publishes CAMERA
+// and GROUND_TRUTH with the same seq and utime, flies its camera with VEHICLE_STATE and exits 0 at --duration;
+// a 60-frame video file arrives whole; a missing file exits 1 with ERROR in HEALTH.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <opencv2/videoio.hpp>
+
+#include "bus_node.hpp"
+#include "clock.hpp"
+#include "gpilot/ground_truth_t.hpp"
+#include "gpilot/health_t.hpp"
+#include "gpilot/image_t.hpp"
+#include "gpilot/vehicle_state_t.hpp"
+
+namespace gpilot {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
+pid_t spawn(std::vector<std::string> args) {
+  args.insert(args.begin(), std::string(GPILOT_BIN_DIR) + "/gpilot-capture");
+  args.push_back("--lcm-url=" + kUrl);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Serves node until the process exits (or 30 s pass); returns its exit status (-1 on timeout).
+int serve_until_exit(BusNode& node, pid_t pid, const std::function<void()>& each = {}) {
+  const int64_t end = monotonic_utime() + 30'000'000;
+  int status = 0;
+  while (monotonic_utime() < end) {
+    node.spin_once(10);
+    if (each) each();
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      for (int i = 0; i < 20; ++i) node.spin_once(10);  // the last messages
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+
+TEST(CaptureLcm, SyntheticWorldInRealTimeWithTruthAndClosedLoop) {
+  BusNode node("test", kUrl);
+  std::map<int64_t, int64_t> frame_utime, truth_utime;
+  std::map<int64_t, float> truth_camera_north;
+  std::vector<int64_t> arrivals;
+  node.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) {
+    frame_utime[m.seq] = m.utime;
+    arrivals.push_back(monotonic_utime());
+    EXPECT_EQ(m.width, 640);
+    EXPECT_EQ(m.height, 480);
+  });
+  node.subscribe<ground_truth_t>("GROUND_TRUTH", [&](const ground_truth_t& m, int64_t) {
+    truth_utime[m.seq] = m.utime;
+    truth_camera_north[m.seq] = m.camera_position[0];
+  });
+  // GIVEN the vehicle 0.5 m north of the scenario's camera, sent 10 times a second
+  vehicle_state_t v{};
+  v.position[0] = 0.5f;
+  v.position[2] = -1.5f;
+  v.source = vehicle_state_t::SOURCE_SIMULATOR;
+  int64_t next_state = 0;
+  const pid_t pid = spawn({"--synthetic", "tour", "--duration", "2"});
+  const int status = serve_until_exit(node, pid, [&] {
+    if (monotonic_utime() >= next_state) {
+      node.publish("VEHICLE_STATE", v);
+      next_state = monotonic_utime() + 100'000;
+    }
+  });
+  // THEN it exits 0 after 2 s of frames: 50 at 25 fps, paced in real time (about 2 s from first to last)
+  EXPECT_EQ(status, 0);
+  EXPECT_GE(frame_utime.size(), 48u);
+  EXPECT_LE(frame_utime.size(), 50u);
+  ASSERT_GE(arrivals.size(), 2u);
+  EXPECT_NEAR((arrivals.back() - arrivals.front()) / 1e6, 49 / 25.0, 0.4);
+  // every truth has its frame's utime; and the camera flies with the vehicle
+  int matched = 0;
+  for (const auto& [seq, utime] : truth_utime)
+    if (frame_utime.count(seq)) {
+      EXPECT_EQ(utime, frame_utime[seq]);
+      ++matched;
+    }
+  EXPECT_GE(matched, 45);
+  ASSERT_FALSE(truth_camera_north.empty());
+  EXPECT_FLOAT_EQ(truth_camera_north.rbegin()->second, 0.5f);
+}
+
+TEST(CaptureLcm, VideoFileArrivesWhole) {
+  const fs::path dir = fs::temp_directory_path() / ("gpilot-capture-lcm-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "clip.avi").string();
+  {
+    cv::VideoWriter w(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 25.0, cv::Size(320, 240));
+    ASSERT_TRUE(w.isOpened());
+    for (int i = 0; i < 60; ++i) w.write(cv::Mat(240, 320, CV_8UC3, cv::Scalar::all(i * 4)));
+  }
+  BusNode node("test", kUrl);
+  std::vector<int64_t> seqs;
+  node.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) {
+    seqs.push_back(m.seq);
+    EXPECT_EQ(m.width, 320);
+    EXPECT_EQ(m.utime, m.seq * 40000);  // file time at 25 fps
+  });
+  // paced at the file's rate so that nothing is lost on the way
+  EXPECT_EQ(serve_until_exit(node, spawn({"--video", path})), 0);
+  EXPECT_EQ(seqs.size(), 60u);
+  fs::remove_all(dir);
+}
+
+TEST(CaptureLcm, MissingFileExitsOneWithErrorInHealth) {
+  BusNode node("test", kUrl);
+  std::string detail;
+  int8_t state = -1;
+  node.subscribe<health_t>("HEALTH", [&](const health_t& m, int64_t) {
+    if (m.name == "gpilot-capture") state = m.state, detail = m.state_detail;
+  });
+  EXPECT_EQ(serve_until_exit(node, spawn({"--video", "/no/such/clip.mp4"})), 1);
+  EXPECT_EQ(state, health_t::STATE_ERROR);
+  EXPECT_NE(detail.find("/no/such/clip.mp4"), std::string::npos) << detail;
+}
+
+}  // namespace
+}  // namespace gpilot
