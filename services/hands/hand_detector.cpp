@@ -32,6 +32,7 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   g.shoulder_centre = cv::Point2f(static_cast<float>(x + w / 2), static_cast<float>(y + p.shoulder_centre_ratio * h));
   g.body_centre = cv::Point2f(static_cast<float>(x + w / 2), static_cast<float>(y + p.body_centre_ratio * h));
   g.width = static_cast<float>(w);
+  g.open_radius = static_cast<int>(std::lround(p.skin.open_radius_ratio * w));
   g.hand_side = std::max(1, static_cast<int>(std::lround(w * p.hand_square_ratio)));
   g.face_rows_end = static_cast<int>(std::lround(y + p.face_remove_ratio * h));
   g.legs_rows_begin = static_cast<int>(std::lround(y + h - p.legs_remove_ratio * h));
@@ -54,6 +55,10 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box) 
     return r;
   }
   skin_.classify(bgr(g.roi), mask_);
+  if (g.open_radius > 0) {
+    const int side = 2 * g.open_radius + 1;
+    cv::morphologyEx(mask_, mask_, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
+  }
   // Face/neck and legs/feet: rows of the user box (box columns only) cleared by the preset ratios.
   const cv::Rect top(g.box.x, g.box.y, g.box.width, std::max(0, g.face_rows_end - g.box.y));
   const cv::Rect bottom(g.box.x, g.legs_rows_begin, g.box.width, std::max(0, g.box.br().y - g.legs_rows_begin));

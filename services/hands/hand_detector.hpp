@@ -1,6 +1,6 @@
 // The paper's hand detection for one frame and one user box (w = box width):
-//   skin mask (one table lookup a pixel) inside the search rectangle extended from the user box, with the
-//   face/neck and legs/feet rows of the box removed; F_skin(p) = skin pixels in the w/4 square centred at p,
+//   skin mask (one table lookup a pixel) inside the search rectangle extended from the user box, opened
+//   (erode + dilate, ours) against background specks, with the face/neck and legs/feet rows of the box removed; F_skin(p) = skin pixels in the w/4 square centred at p,
 //   from an integral image (O(1) a pixel);
 //   Alg. 1: more than out_min_skin skin pixels outside the box -> argmax over them of
 //           |p_uc.x - p.x| + λ2 (p_uc.y - p.y) + λ1 F_skin(p), result p - p_uc (KIND OUT);
@@ -28,6 +28,7 @@ struct HandGeometry {
   cv::Point2f body_centre;      //!< p_bc
   float width = 0;              //!< w: the user box width as given (the clipped box may be narrower)
   int hand_side = 0;            //!< hand square side, pixels (w/4)
+  int open_radius = 0;          //!< skin mask opening radius, pixels (0 = none)
   int face_rows_end = 0;        //!< box rows y < this are removed (face, neck)
   int legs_rows_begin = 0;      //!< box rows y >= this are removed (legs, feet)
   bool valid = false;           //!< false for a box too small or off the image

@@ -3,7 +3,7 @@
 // and writes HAND_OBS (gpilot.hand_obs_t) for each pair: the paper's Alg. 1 (stretched-out hand, vector
 // from the shoulder centre) else Alg. 2 (hand in front of the body, vector from the body centre) else NONE.
 // A frame or track that never meets its partner is dropped and counted (HEALTH rejected); a track that
-// is not TRACKING gives NONE.
+// is not TRACKING gives NONE; a track made on a frame of another size is rejected.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -87,6 +87,10 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     const std::string why = image_to_mat(frame, bgr);
     if (!why.empty()) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": " + why);
     if (bgr.type() != CV_8UC3) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8");
+    if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
+      return node.reject("USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) +
+                         "x" + std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
+                         std::to_string(bgr.rows));
     node.publish("HAND_OBS", observe(detector, frame, track, bgr));
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
   };

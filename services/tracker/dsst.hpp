@@ -95,7 +95,7 @@ class Dsst {
   cv::Mat scale_den_;          // 1 x S, CV_32F
 
   // Buffers reused every frame.
-  cv::Mat crop_, patch_, grey_, grey_cells_, scale_inter_, scale_patch_;
+  cv::Mat crop_, shrunk_, patch_, grey_, grey_cells_, scale_inter_, scale_patch_;
   std::vector<cv::Mat> feats_;      // 32 channels, CV_32F
   std::vector<cv::Mat> feats_f_;    // their DFTs, CV_32FC2
   std::vector<cv::Mat> scale_fhog_;

@@ -37,10 +37,10 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
     cv::resize(grey_, small_, cv::Size(), 1.0 / k, 1.0 / k, cv::INTER_AREA);
     img = &small_;
   }
-  cv::equalizeHist(*img, small_);
+  // No histogram equalisation: on messi5.jpg it turns the shirt into a face at min_neighbors 5.
   std::vector<cv::Rect> faces;
   const int min_px = p_.face.min_face_px;
-  cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px));
+  cascade_.detectMultiScale(*img, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px));
   if (faces.empty()) return std::nullopt;
   // The largest face, ties broken by position so that the choice does not depend on detection order.
   const auto best = std::max_element(faces.begin(), faces.end(), [](const cv::Rect& a, const cv::Rect& b) {

@@ -67,6 +67,9 @@ void Fhog::compute(const cv::Mat& patch, int cell, std::vector<cv::Mat>& out, si
   const OrientationTable& table = orientation_table();
   float* hist = hist_.ptr<float>();
   // Bilinear spatial weights depend on x only through these: computed once per call.
+  gdx_.resize(static_cast<size_t>(w));
+  gdy_.resize(static_cast<size_t>(w));
+  gv_.resize(static_cast<size_t>(w));
   xcell_.resize(static_cast<size_t>(w));
   xw_.resize(static_cast<size_t>(w));
   for (int x = 0; x < w; ++x) {
@@ -83,21 +86,34 @@ void Fhog::compute(const cv::Mat& patch, int cell, std::vector<cv::Mat>& out, si
     const int iy = static_cast<int>(std::floor(yp));
     const float vy0 = yp - static_cast<float>(iy);
     const float vy1 = 1.0f - vy0;
+    // Pass 1: the strongest channel's gradient of every pixel of the row (branch-free, vectorisable).
+    int* gdx = gdx_.data();
+    int* gdy = gdy_.data();
+    int* gv = gv_.data();
     for (int x = 0; x < w; ++x) {
-      const int xl = std::max(x - 1, 0) * nch;
-      const int xr = std::min(x + 1, patch.cols - 1) * nch;
-      int best_dx = 0, best_dy = 0, best_v = 0;
-      for (int c = 0; c < nch; ++c) {
+      const int xl = (x > 0 ? x - 1 : 0) * nch;
+      const int xr = (x + 1 < patch.cols ? x + 1 : patch.cols - 1) * nch;
+      int bdx = static_cast<int>(mid[xr]) - static_cast<int>(mid[xl]);
+      int bdy = static_cast<int>(dn[x * nch]) - static_cast<int>(up[x * nch]);
+      int bv = bdx * bdx + bdy * bdy;
+      for (int c = 1; c < nch; ++c) {
         const int dx = static_cast<int>(mid[xr + c]) - static_cast<int>(mid[xl + c]);
         const int dy = static_cast<int>(dn[x * nch + c]) - static_cast<int>(up[x * nch + c]);
         const int v = dx * dx + dy * dy;
-        if (v > best_v) {
-          best_v = v;
-          best_dx = dx;
-          best_dy = dy;
-        }
+        const bool better = v > bv;
+        bdx = better ? dx : bdx;
+        bdy = better ? dy : bdy;
+        bv = better ? v : bv;
       }
+      gdx[x] = bdx;
+      gdy[x] = bdy;
+      gv[x] = bv;
+    }
+    // Pass 2: orientation bin and bilinear vote into the 4 nearest cells.
+    for (int x = 0; x < w; ++x) {
+      const int best_v = gv[x];
       if (best_v == 0) continue;
+      const int best_dx = gdx[x], best_dy = gdy[x];
       const float mag = std::sqrt(static_cast<float>(best_v));
       const int o = table.bin(best_dx, best_dy);
       const int ix = xcell_[static_cast<size_t>(x)];

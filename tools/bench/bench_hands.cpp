@@ -1,11 +1,12 @@
 // Benchmarks of the hands stage on one core: the whole stage per 640x480 frame (skin lookup in the search
-// rectangle, removals, integral image, Alg. 1 and Alg. 2), and its skin lookup alone over a full frame.
-// Frames are made before timing: a drawn person pointing out (about 4 % skin in the rectangle) and a
-// worst case of random colours (every other pixel of the rectangle a candidate).
+// rectangle, opening, removals, integral image, Alg. 1 and Alg. 2), and its skin lookup alone over a full frame.
+// Frames are made before timing: the key poses of the synthetic `tour` (with their true user boxes), a drawn
+// person pointing out, and a worst case of random colours (a tenth of the rectangle skin, in specks).
 #include <benchmark/benchmark.h>
 
 #include <opencv2/imgproc.hpp>
 
+#include "capture/synthetic_world.hpp"
 #include "hands/hand_detector.hpp"
 #include "paths.hpp"
 
@@ -52,6 +53,21 @@ void run_stage(benchmark::State& state, const cv::Mat& frame) {
   state.counters["skin_px"] = cv::countNonZero(d.last_mask());
 }
 
+// Every key pose of the tour, one per iteration in turn.
+void BM_HandsStage_TourKeyPoses(benchmark::State& state) {
+  const SyntheticWorld world(SyntheticParams{}, Scenario::load("tour"), 1);
+  std::vector<SyntheticFrame> frames;
+  for (const double t : world.scenario().key_times())
+    frames.push_back(world.render(t, static_cast<int64_t>(t * world.params().fps), std::nullopt));
+  HandDetector d = make_detector();
+  size_t i = 0;
+  for (auto _ : state) {
+    const SyntheticFrame& f = frames[i++ % frames.size()];
+    benchmark::DoNotOptimize(d.detect(f.bgr, f.truth.user_box).vector);
+  }
+  state.counters["poses"] = static_cast<double>(frames.size());
+}
+
 void BM_HandsStage_PersonPointing(benchmark::State& state) { run_stage(state, drawn_person()); }
 void BM_HandsStage_RandomColours(benchmark::State& state) { run_stage(state, random_colours()); }
 
@@ -69,6 +85,7 @@ void BM_SkinLookup_FullFrame(benchmark::State& state) {
 
 }  // namespace
 
+BENCHMARK(BM_HandsStage_TourKeyPoses)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HandsStage_PersonPointing)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HandsStage_RandomColours)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SkinLookup_FullFrame)->Unit(benchmark::kMillisecond);

@@ -12,7 +12,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "capture/capture_params.hpp"
 #include "capture/synthetic_world.hpp"
 #include "clock.hpp"
 #include "hands/hand_detector.hpp"
@@ -53,7 +52,7 @@ int main(int argc, char** argv) {
                  "Scores the hands stage (skin + Alg. 1/2) on a synthetic scenario against its ground truth, with the\n"
                  "TRUE user box (the tracker is not involved): kind accuracy and confusion matrix, OUT angle and length\n"
                  "error, FRONT higher/lower success, ms per frame; a few annotated PNGs (skin in red, hand square, vector).");
-  std::string scenario = "tour", png_dir = "eval_hands_png";
+  std::string scenario = "tour", png_dir = "eval_hands_png", csv_path;
   uint64_t seed = 1;
   int stride = 1, pngs = 6;
   bool json = false;
@@ -63,14 +62,14 @@ int main(int argc, char** argv) {
   app.add_option("--stride", stride, "score every N-th frame")->check(CLI::PositiveNumber);
   app.add_option("--png-dir", png_dir, "folder for the annotated PNGs ('' = none)");
   app.add_option("--pngs", pngs, "how many annotated PNGs at most")->check(CLI::NonNegativeNumber);
+  app.add_option("--csv", csv_path, "write one line per frame (truth and detected kind and vector) to this file");
   app.add_flag("--json", json, "print one JSON object on stdout");
   return cli.run(argc, argv, [&](const Config& config) {
     const auto hands = config.section<HandsParams>("hands");
     TruthRules rules;
     rules.tracker = config.section<TrackerParams>("tracker");
     rules.hands = hands;
-    const auto capture = config.section<CaptureParams>("capture");
-    const SyntheticWorld world(capture.synthetic, Scenario::load(scenario), seed, rules);
+    const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), seed, rules);
     const std::string model_path = resolve_project_path(hands.skin.model);
     HandDetector detector(hands, SkinClassifier(SkinModel::load(model_path), hands.skin.threshold));
 
@@ -82,7 +81,11 @@ int main(int argc, char** argv) {
     int written = 0, steady = 0, last_truth = -1;
     bool png_for_kind[3] = {false, false, false};
     int error_pngs = 0;
+    int64_t last_error_png = -1000000;
     if (!png_dir.empty()) std::filesystem::create_directories(png_dir);
+    std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
+    if (!csv_path.empty() && !csv) throw std::runtime_error("cannot write " + csv_path);
+    if (csv) std::fprintf(csv, "frame,t_s,truth_kind,kind,truth_x,truth_y,x,y,hand_skin,skin_outside,skin_inside\n");
 
     for (int64_t i = 0; i < frames; i += stride) {
       const SyntheticFrame f = world.render(static_cast<double>(i) / fps, i, std::nullopt);
@@ -95,6 +98,9 @@ int main(int argc, char** argv) {
       steady = truth == last_truth ? steady + 1 : 0;
       last_truth = truth;
       const cv::Point2f tv = f.truth.expected_vector;
+      if (csv)
+        std::fprintf(csv, "%lld,%.3f,%s,%s,%.1f,%.1f,%.1f,%.1f,%d,%d,%d\n", static_cast<long long>(i), static_cast<double>(i) / fps,
+                     kKinds[truth], kKinds[got], tv.x, tv.y, r.vector.x, r.vector.y, r.hand_skin, r.skin_outside, r.skin_inside);
       if (truth == 1 && got == 1) {
         angle_err.push_back(angle_between_deg(r.vector, tv));
         const double lt = std::hypot(tv.x, tv.y), lg = std::hypot(r.vector.x, r.vector.y);
@@ -110,12 +116,15 @@ int main(int argc, char** argv) {
           front_right += right_side;
         }
       }
-      // PNGs: the first steady frame of each kind (held 10 frames), then the first few wrong kinds.
+      // PNGs: the first steady frame of each kind (held 10 frames), then wrong kinds at least 2 s apart.
       const bool steady_pick = steady >= 10 / stride && !png_for_kind[truth];
-      const bool error_pick = truth != got && error_pngs < pngs / 2;
+      const bool error_pick = truth != got && error_pngs < pngs / 2 && i - last_error_png >= static_cast<int64_t>(2 * fps);
       if (!png_dir.empty() && written < pngs && (steady_pick || error_pick)) {
         png_for_kind[truth] = png_for_kind[truth] || steady_pick;
-        error_pngs += !steady_pick;
+        if (!steady_pick) {
+          ++error_pngs;
+          last_error_png = i;
+        }
         cv::Mat img = f.bgr.clone();
         draw_hand_overlay(img, r, detector.last_mask(), detector.last_roi());
         const cv::Point2f from = truth == 1 ? f.truth.shoulder_centre : f.truth.body_centre;
@@ -133,6 +142,7 @@ int main(int argc, char** argv) {
       if ((i / stride) % 50 == 0) std::fprintf(stderr, "\r%lld/%lld frames", static_cast<long long>(i), static_cast<long long>(frames));
     }
     std::fprintf(stderr, "\n");
+    if (csv) std::fclose(csv);
     int64_t correct = 0;
     for (int k = 0; k < 3; ++k) correct += confusion[k][k];
     const double accuracy = scored ? static_cast<double>(correct) / static_cast<double>(scored) : 0;

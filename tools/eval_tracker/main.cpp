@@ -81,7 +81,7 @@ class UserTrackerRunner : public Runner {
 
 class DsstRunner : public Runner {
  public:
-  explicit DsstRunner(const DsstParams& p) : Runner("gpilot DSST (paper)"), d_(p) {}
+  explicit DsstRunner(const DsstParams& p) : Runner("gpilot DSST alone"), d_(p) {}
   void init(const cv::Mat& frame, const cv::Rect2d& box) override { d_.init(frame, box); }
   std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
     const DsstEstimate e = d_.update(frame);
@@ -176,11 +176,23 @@ std::string result_fields(const Result& r) {
   return s.str();
 }
 
-int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path, bool auto_init,
+int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path,
+             const std::string& synthetic, bool auto_init,
              bool compare, bool json, const std::string& plot, int threads) {
   cv::setNumThreads(threads);
   const auto params = config.section<TrackerParams>("tracker");
-  std::unique_ptr<FrameSource> src = log_path.empty() ? open_otb(seq_dir) : open_lcm_log(log_path);
+  std::unique_ptr<FrameSource> src;
+  if (!log_path.empty()) {
+    src = open_lcm_log(log_path);
+  } else if (!synthetic.empty()) {
+#ifdef GPILOT_HAVE_SYNTHETIC
+    src = open_synthetic(synthetic);
+#else
+    throw std::runtime_error("--synthetic: built without the capture stage's synthetic world");
+#endif
+  } else {
+    src = open_otb(seq_dir);
+  }
 
   std::vector<std::unique_ptr<Runner>> runners;
   runners.push_back(std::make_unique<UserTrackerRunner>(params));
@@ -287,16 +299,16 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
               src->name().c_str(), frames, truth_frames, init_how.c_str(), init_frame, threads);
   std::printf("%-26s %8s %9s %9s %6s %9s %9s\n", "tracker", "AUC", "prec@20", "mean IoU", "lost", "fps", "ms/frame");
   for (const auto& r : results)
-    std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
+    std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f   final box %.0f,%.0f %.0fx%.0f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
                 num(r.has_truth ? r.scores.precision_20px : NAN, 3).c_str(), num(r.has_truth ? r.scores.mean_iou : NAN, 3).c_str(),
-                r.lost, r.fps, r.ms);
+                r.lost, r.fps, r.ms, r.final_box.x, r.final_box.y, r.final_box.width, r.final_box.height);
   std::printf("\nours: PSR min %.2f, mean %.2f; final box %.1f %.1f %.1f %.1f\n", ours.psr_min, ours.psr_mean,
               ours.final_box.x, ours.final_box.y, ours.final_box.width, ours.final_box.height);
   if (results.size() > 2 && ours.has_truth) {
     std::printf("\n%s against the anchors:\n", ours.name.c_str());
     for (size_t i = 2; i < results.size(); ++i) {
       const Result& a = results[i];
-      std::printf("  %-26s AUC %s (%+.3f), %.1fx its speed\n", a.name.c_str(),
+      std::printf("  %-26s AUC %s (%+.3f), %.2fx its speed\n", a.name.c_str(),
                   ours.scores.success_auc >= a.scores.success_auc ? "better" : "WORSE",
                   ours.scores.success_auc - a.scores.success_auc, a.ms > 0 ? a.ms / ours.ms : 0.0);
     }
@@ -311,22 +323,23 @@ int main(int argc, char** argv) {
   gpilot::ServiceCli cli("gpilot-eval-tracker",
                          "Tracker evaluation on an OTB sequence folder or an LCM log (CAMERA + GROUND_TRUTH):\n"
                          "success AUC, precision at 20 px, mean IoU, frames lost, frames per second.");
-  std::string seq, log, plot;
+  std::string seq, log, plot, synthetic;
   bool auto_init = false, compare = false, json = false;
   int threads = 1;
   auto& app = cli.app();
   app.add_option("sequence", seq, "OTB-layout folder: img/*.jpg and groundtruth_rect.txt (1-based) or init_rect.txt (0-based)");
   app.add_option("--log", log, "LCM log with CAMERA and GROUND_TRUTH instead of a folder");
+  app.add_option("--synthetic", synthetic, "a synthetic-world scenario (e.g. tour) instead of a folder; truth = its user box");
   app.add_flag("--auto-init", auto_init, "start from the face detector's body box instead of the first ground truth");
   app.add_flag("--compare", compare, "also run OpenCV CSRT, KCF, MOSSE and dlib correlation_tracker on the same frames");
   app.add_flag("--json", json, "print one JSON object on stdout");
   app.add_option("--plot", plot, "write the success plot to this PNG");
   app.add_option("--threads", threads, "OpenCV threads (default 1: the cost on one core; times are thread CPU time)");
   return cli.run(argc, argv, [&](const gpilot::Config& config) {
-    if (seq.empty() == log.empty()) {
-      std::fprintf(stderr, "gpilot-eval-tracker: give a sequence folder or --log (one of them)\n");
+    if (!seq.empty() + !log.empty() + !synthetic.empty() != 1) {
+      std::fprintf(stderr, "gpilot-eval-tracker: give one of: a sequence folder, --log, --synthetic\n");
       return 2;
     }
-    return gpilot::run_eval(config, seq, log, auto_init, compare, json, plot, threads);
+    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, threads);
   });
 }

@@ -60,7 +60,7 @@ void write_success_plot(const std::string& path, const std::string& title, const
   cv::rectangle(img, px(0, 1), px(1, 0), cv::Scalar(0, 0, 0));
   cv::putText(img, "IoU threshold", cv::Point(L + 150, H - 15), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
   cv::putText(img, "success rate", cv::Point(5, T - 15), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
-  cv::putText(img, title, cv::Point(L, 25), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1);
+  cv::putText(img, title, cv::Point(L + 120, 25), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 1);
   const cv::Scalar colours[] = {{0, 0, 220}, {200, 0, 0}, {0, 150, 0}, {0, 140, 255}, {160, 0, 160}, {120, 120, 0}, {60, 60, 60}};
   for (size_t c = 0; c < curves.size(); ++c) {
     const cv::Scalar col = colours[c % (sizeof colours / sizeof colours[0])];

@@ -12,6 +12,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "image_codec.hpp"
+#ifdef GPILOT_HAVE_SYNTHETIC
+#include "capture/synthetic_params.hpp"
+#include "capture/synthetic_world.hpp"
+#endif
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/image_t.hpp"
 
@@ -123,7 +127,36 @@ class LogSource : public FrameSource {
   std::map<int64_t, cv::Rect2d> truths_;
 };
 
+#ifdef GPILOT_HAVE_SYNTHETIC
+class SyntheticSource : public FrameSource {
+ public:
+  explicit SyntheticSource(const std::string& scenario)
+      : world_(SyntheticParams{}, Scenario::load(scenario), 1),
+        frames_(static_cast<int64_t>(world_.scenario().duration_s() * world_.params().fps)) {}
+  bool next(EvalFrame& out) override {
+    if (i_ >= frames_) return false;
+    const SyntheticFrame f = world_.render(static_cast<double>(i_) / world_.params().fps, i_, std::nullopt);
+    out.image = f.bgr;
+    out.truth = cv::Rect2d(f.truth.user_box);
+    ++i_;
+    return true;
+  }
+  std::string name() const override { return "synthetic " + world_.scenario().name(); }
+
+ private:
+  SyntheticWorld world_;
+  int64_t frames_;
+  int64_t i_ = 0;
+};
+#endif
+
 }  // namespace
+
+#ifdef GPILOT_HAVE_SYNTHETIC
+std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario) {
+  return std::make_unique<SyntheticSource>(scenario);
+}
+#endif
 
 std::unique_ptr<FrameSource> open_otb(const std::string& dir) { return std::make_unique<OtbSource>(dir); }
 std::unique_ptr<FrameSource> open_lcm_log(const std::string& path) { return std::make_unique<LogSource>(path); }

@@ -31,6 +31,11 @@ std::unique_ptr<FrameSource> open_otb(const std::string& dir);
 // Throws std::runtime_error when the log cannot be opened.
 std::unique_ptr<FrameSource> open_lcm_log(const std::string& path);
 
+#ifdef GPILOT_HAVE_SYNTHETIC
+// The synthetic world's scenario (name or .yaml path) at the capture defaults, truth = its user_box.
+std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario);
+#endif
+
 // "x,y,w,h" (commas, tabs or spaces); none if malformed or w, h <= 0.
 std::optional<cv::Rect2d> parse_box(const std::string& line);
 

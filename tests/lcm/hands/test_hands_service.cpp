@@ -1,6 +1,6 @@
 // gpilot-hands as a real process over real LCM (run inside a private network namespace): CAMERA + USER_TRACK
 // in, HAND_OBS out with the frame's seq; a track without its frame and a frame without its track are dropped
-// and counted in HEALTH, never paired with another seq.
+// and counted in HEALTH, never paired with another seq; a track made on another frame size is rejected.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -125,6 +125,11 @@ TEST(HandsService, PairsBySeqAndCountsTheUnmatched) {
   for (int64_t s = 11; s <= 14; ++s) send_frame(s), send_track(track(s));
   send_frame(20);
   for (int64_t s = 21; s <= 24; ++s) send_frame(s), send_track(track(s));
+  // AND a pair whose track was made on a frame of another size (rejected, not measured on the wrong image).
+  user_track_t other_size = track(30);
+  other_size.image_width = 640;
+  send_frame(30);
+  send_track(other_size);
 
   // THEN one HAND_OBS per matched seq, with that seq's utime, and nothing for 10 or 20.
   const std::set<int64_t> expected = {0, 1, 2, 3, 4, 11, 12, 13, 14, 21, 22, 23, 24};
@@ -144,10 +149,11 @@ TEST(HandsService, PairsBySeqAndCountsTheUnmatched) {
       EXPECT_FLOAT_EQ(m.shoulder_centre[1], 132);
     }
   }
-  // AND HEALTH counts the lone track and the lone frame as rejected (unmatched).
-  ASSERT_TRUE(spin_until([&] { return last_health.rejected >= 2; }, 5000))
+  // AND HEALTH counts the lone track, the lone frame and the size mismatch as rejected.
+  ASSERT_TRUE(spin_until([&] { return last_health.rejected >= 3; }, 5000))
       << "rejected " << last_health.rejected << " last reason: " << last_health.last_reject_reason;
-  EXPECT_EQ(last_health.rejected, 2);
-  EXPECT_NE(last_health.last_reject_reason.find("without"), std::string::npos) << last_health.last_reject_reason;
+  EXPECT_EQ(last_health.rejected, 3);
+  EXPECT_NE(last_health.last_reject_reason.find("640x400 frame, CAMERA has 400x400"), std::string::npos)
+      << last_health.last_reject_reason;
   EXPECT_EQ(last_health.messages_out, static_cast<int64_t>(expected.size()));
 }

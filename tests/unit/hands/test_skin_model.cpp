@@ -151,21 +151,22 @@ TEST(SkinData, ScoresAtAThreshold) {
 
 TEST(SkinModel, CommittedModelOnUnseenPhotographs) {
   // The committed model is trained on the UCI face pixels only; abd_skin (abdomen photographs, another source)
-  // was not used in training. Floor below the measured F1 (0.900 on train/, 0.898 on val/ at threshold 0.5).
-  const std::string images = shared_dir() + "/data/skin/abd_skin/val/images";
+  // was not used in training, and its train/ half was not looked at while choosing the smoothing. Floors below
+  // the measured figures at the configured threshold 0.75 (F1 0.876, precision 0.937, recall 0.822).
+  const std::string images = shared_dir() + "/data/skin/abd_skin/train/images";
   if (!std::filesystem::is_directory(images)) GTEST_SKIP() << "needs ../shared/data/skin/abd_skin (not in the repo)";
   const HandsParams p;
   const SkinModel model = SkinModel::load(resolve_project_path(p.skin.model));
   LevelCounts counts;
-  for (const auto& pair : pair_images_and_masks(images, shared_dir() + "/data/skin/abd_skin/val/masks")) {
+  for (const auto& pair : pair_images_and_masks(images, shared_dir() + "/data/skin/abd_skin/train/masks")) {
     cv::Mat bgr, mask;
     read_pair(pair, bgr, mask);
     counts.add_image(model, bgr, mask);
   }
   const auto s = counts.score(p.skin.threshold);
-  EXPECT_GE(s.f1, 0.88);
-  EXPECT_GE(s.precision, 0.90);
-  EXPECT_GE(s.recall, 0.85);
+  EXPECT_GE(s.f1, 0.86);
+  EXPECT_GE(s.precision, 0.92);
+  EXPECT_GE(s.recall, 0.80);
 }
 
 TEST(SkinModel, CommittedModelIsReproducibleFromUci) {

@@ -1,0 +1,82 @@
+// The hands stage on frames of the synthetic world (scenario `tour`, the true user box): at every key pose of
+// the script, resting hands give NONE, a stretched-out arm gives OUT with a vector within 5 degrees and 10 %
+// of the true one, a hand in front of the body above its centre gives FRONT with y < 0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "capture/synthetic_world.hpp"
+#include "gpilot/ground_truth_t.hpp"
+#include "hands/hand_detector.hpp"
+#include "paths.hpp"
+
+using namespace gpilot;
+
+namespace {
+
+struct KeyPose {
+  double t;
+  SyntheticFrame frame;
+  HandResult result;
+};
+
+std::vector<KeyPose> run_tour() {
+  const HandsParams p;
+  const SyntheticWorld world(SyntheticParams{}, Scenario::load("tour"), 1);
+  HandDetector d(p, SkinClassifier(SkinModel::load(resolve_project_path(p.skin.model)), p.skin.threshold));
+  std::vector<KeyPose> out;
+  for (const double t : world.scenario().key_times()) {
+    KeyPose k{t, world.render(t, static_cast<int64_t>(std::lround(t * world.params().fps)), std::nullopt), {}};
+    k.result = d.detect(k.frame.bgr, k.frame.truth.user_box);
+    out.push_back(std::move(k));
+  }
+  return out;
+}
+
+double angle_deg(cv::Point2f a, cv::Point2f b) {
+  return std::abs(std::remainder(std::atan2(a.y, a.x) - std::atan2(b.y, b.x), 2 * M_PI)) * 180 / M_PI;
+}
+
+}  // namespace
+
+TEST(HandsSynthetic, EveryKeyPoseOfTheTour) {
+  const auto poses = run_tour();
+  ASSERT_GE(poses.size(), 10u);
+  int rest = 0, out = 0, closer = 0;
+  for (const auto& k : poses) {
+    const auto& truth = k.frame.truth;
+    const auto& r = k.result;
+    SCOPED_TRACE("t = " + std::to_string(k.t) + " s, gesture " + std::to_string(truth.gesture));
+    switch (truth.gesture) {
+      case ground_truth_t::GESTURE_REST:
+        ++rest;
+        EXPECT_EQ(r.kind, HandKind::None) << "vector " << r.vector;
+        break;
+      case ground_truth_t::GESTURE_OUT:
+      case ground_truth_t::GESTURE_UP:
+      case ground_truth_t::GESTURE_DOWN: {
+        ++out;
+        ASSERT_EQ(truth.expected_kind, static_cast<int>(HandKind::Out));
+        ASSERT_EQ(r.kind, HandKind::Out);
+        const cv::Point2f tv = truth.expected_vector;
+        EXPECT_LT(angle_deg(r.vector, tv), 5.0) << r.vector << " vs " << tv;
+        EXPECT_NEAR(std::hypot(r.vector.x, r.vector.y), std::hypot(tv.x, tv.y), 0.1 * std::hypot(tv.x, tv.y));
+        // Mirror: the user's right arm shows on the image's left, x < 0, and the sign is kept.
+        if (std::abs(tv.x) > 10) {
+          EXPECT_EQ(r.vector.x < 0, tv.x < 0);
+        }
+        break;
+      }
+      case ground_truth_t::GESTURE_CLOSER:
+        ++closer;
+        ASSERT_EQ(r.kind, HandKind::Front);
+        EXPECT_LT(r.vector.y, 0) << "higher than the body centre";
+        break;
+      default:
+        break;
+    }
+  }
+  EXPECT_GE(rest, 3);
+  EXPECT_GE(out, 4);
+  EXPECT_GE(closer, 1);
+}

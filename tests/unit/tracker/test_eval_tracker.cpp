@@ -1,0 +1,115 @@
+// Known answers of the tracker evaluation's pieces: OTB scores, box parsing, OTB folders (1-based boxes)
+// and LCM logs whose CAMERA and GROUND_TRUTH are paired by seq whatever their order.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "image_codec.hpp"
+#include "metrics.hpp"
+#include "sequence.hpp"
+#include "gpilot/ground_truth_t.hpp"
+
+namespace gpilot {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(EvalMetrics, IouCentreErrorAndScores) {
+  EXPECT_DOUBLE_EQ(iou(cv::Rect2d(0, 0, 10, 10), cv::Rect2d(5, 0, 10, 10)), 50.0 / 150.0);
+  EXPECT_DOUBLE_EQ(iou(cv::Rect2d(0, 0, 10, 10), cv::Rect2d(20, 0, 10, 10)), 0.0);
+  EXPECT_DOUBLE_EQ(centre_error(cv::Rect2d(0, 0, 10, 10), cv::Rect2d(3, 4, 10, 10)), 5.0);
+  // IoUs 1, 0.5, 0: success above thresholds 0..1 step 0.05.
+  const TrackScores s = score({1.0, 0.5, 0.0}, {0.0, 20.0, 25.0});
+  EXPECT_DOUBLE_EQ(s.success[0], 2.0 / 3.0);    // IoU > 0
+  EXPECT_DOUBLE_EQ(s.success[10], 1.0 / 3.0);   // IoU > 0.5: only the perfect frame
+  EXPECT_DOUBLE_EQ(s.success[20], 0.0);         // IoU > 1: none
+  // Rates: thresholds 0..0.45 (10 of them) 2/3, 0.5..0.95 (10) 1/3, 1.0 none -> AUC = (20/3 + 10/3) / 21.
+  EXPECT_NEAR(s.success_auc, 10.0 / 21.0, 1e-12);
+  EXPECT_DOUBLE_EQ(s.precision_20px, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(s.mean_iou, 0.5);
+}
+
+TEST(EvalSequence, ParsesBoxesAndRejectsBadLines) {
+  ASSERT_TRUE(parse_box("1,2,3,4").has_value());
+  EXPECT_EQ(*parse_box("1\t2\t3\t4"), cv::Rect2d(1, 2, 3, 4));
+  EXPECT_FALSE(parse_box("1,2,3").has_value());
+  EXPECT_FALSE(parse_box("1,2,0,4").has_value());
+  EXPECT_FALSE(parse_box("a,b,c,d").has_value());
+}
+
+TEST(EvalSequence, OtbFolderBoxesAreMadeZeroBased) {
+  const fs::path dir = fs::temp_directory_path() / "gpilot_eval_otb_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "img");
+  for (int i = 1; i <= 2; ++i)
+    cv::imwrite((dir / "img" / ("000" + std::to_string(i) + ".jpg")).string(), cv::Mat(20, 30, CV_8UC3, cv::Scalar(i)));
+  std::ofstream(dir / "groundtruth_rect.txt") << "11,21,5,6\n12,22,5,6\n";
+  auto src = open_otb(dir.string());
+  EvalFrame f;
+  ASSERT_TRUE(src->next(f));
+  EXPECT_EQ(*f.truth, cv::Rect2d(10, 20, 5, 6));
+  ASSERT_TRUE(src->next(f));
+  EXPECT_EQ(*f.truth, cv::Rect2d(11, 21, 5, 6));
+  EXPECT_FALSE(src->next(f));
+  std::ofstream(dir / "groundtruth_rect.txt") << "11,21,5\n";
+  EXPECT_THROW(open_otb(dir.string()), std::runtime_error);
+  EXPECT_THROW(open_otb((dir / "missing").string()), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+TEST(EvalSequence, LogPairsCameraAndGroundTruthBySeq) {
+  const fs::path path = fs::temp_directory_path() / "gpilot_eval_log_test.lcmlog";
+  {
+    lcm::LogFile log(path.string(), "w");
+    ASSERT_TRUE(log.good());
+    int64_t n = 0;
+    auto write = [&](const std::string& channel, const auto& msg) {
+      std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
+      msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
+      lcm::LogEvent ev{};
+      ev.eventnum = n;
+      ev.timestamp = 1000 * n++;
+      ev.channel = channel;
+      ev.datalen = static_cast<int32_t>(buf.size());
+      ev.data = buf.data();
+      log.writeEvent(&ev);
+    };
+    auto truth = [](int64_t seq) {
+      ground_truth_t g{};
+      g.seq = seq;
+      g.user_box[0] = 10.0f * static_cast<float>(seq);
+      g.user_box[1] = 5;
+      g.user_box[2] = 8;
+      g.user_box[3] = 9;
+      return g;
+    };
+    // Frame 0 then its truth; truth 1 before frame 1; frame 2 with no truth at all; junk on CAMERA.
+    write("CAMERA", mat_to_image(cv::Mat(20, 30, CV_8UC3, cv::Scalar(0)), 0, 0));
+    write("GROUND_TRUTH", truth(0));
+    write("GROUND_TRUTH", truth(1));
+    write("CAMERA", mat_to_image(cv::Mat(20, 30, CV_8UC3, cv::Scalar(1)), 1, 1));
+    write("CAMERA", mat_to_image(cv::Mat(20, 30, CV_8UC3, cv::Scalar(2)), 2, 2));
+    write("OTHER", truth(7));
+  }
+  auto src = open_lcm_log(path.string());
+  EvalFrame f;
+  ASSERT_TRUE(src->next(f));
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], 0);
+  EXPECT_EQ(*f.truth, cv::Rect2d(0, 5, 8, 9));
+  ASSERT_TRUE(src->next(f));
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], 1);
+  EXPECT_EQ(*f.truth, cv::Rect2d(10, 5, 8, 9));
+  ASSERT_TRUE(src->next(f));
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], 2);
+  EXPECT_FALSE(f.truth.has_value());
+  EXPECT_FALSE(src->next(f));
+  fs::remove(path);
+  EXPECT_THROW(open_lcm_log("/nonexistent.lcmlog"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,93 @@
+// The Haar face search and the head-body ratio on real photographs (data/people, see data/README.md).
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "face_detector.hpp"
+
+namespace gpilot {
+namespace {
+
+cv::Mat photo(const std::string& name) {
+  const std::string path = std::string(GPILOT_SOURCE_DIR) + "/data/people/" + name;
+  cv::Mat m = cv::imread(path, cv::IMREAD_COLOR);
+  EXPECT_FALSE(m.empty()) << path;
+  return m;
+}
+
+bool contains(const cv::Rect2d& box, cv::Point2d p) { return box.contains(p); }
+
+TEST(BodyFromFace, UsesTheHeadBodyRatios) {
+  TrackerParams p;
+  const cv::Rect2d b = body_from_face(cv::Rect2d(100, 50, 40, 40), p);
+  EXPECT_DOUBLE_EQ(b.width, 110.0);   // 2.75 face widths
+  EXPECT_DOUBLE_EQ(b.height, 280.0);  // 7 face heights
+  EXPECT_DOUBLE_EQ(b.x, 120.0 - 55.0);
+  EXPECT_DOUBLE_EQ(b.y, 50.0 - 10.0);  // 0.25 face heights above the face
+}
+
+TEST(FaceDetector, FindsMessisFaceNotHisShirt) {
+  // GIVEN messi5.jpg: face (checked by eye) about x 226..265, y 93..132; the shirt and crowd next to it.
+  FaceDetector d{TrackerParams{}};
+  const auto r = d.detect(photo("messi5.jpg"));
+  ASSERT_TRUE(r.has_value());
+  // THEN the face box is on the face
+  EXPECT_TRUE(contains(r->face, {245, 112})) << r->face;
+  EXPECT_LT(r->face.width, 60);
+  // and the body box holds the torso (the "unicef" print at about (230, 150)), the hips (270, 235)
+  // and the face, and stays inside the frame.
+  EXPECT_TRUE(contains(r->body, {230, 150})) << r->body;
+  EXPECT_TRUE(contains(r->body, {270, 235})) << r->body;
+  EXPECT_TRUE((r->body & r->face) == r->face);
+  EXPECT_LE(r->body.br().y, 342.0);
+}
+
+TEST(FaceDetector, FindsTheAstronautAndHerUpperBody) {
+  // GIVEN astronaut.png: face about x 180..270, y 70..160; orange suit below down to the image bottom.
+  FaceDetector d{TrackerParams{}};
+  const auto r = d.detect(photo("astronaut.png"));
+  ASSERT_TRUE(r.has_value());
+  EXPECT_TRUE(contains(r->face, {225, 115})) << r->face;
+  EXPECT_GT(r->face.width, 70);
+  // The suit: chest (230, 300), mission patch (215, 385), shoulders (120, 260) and (330, 260).
+  for (cv::Point2d p : {cv::Point2d(230, 300), cv::Point2d(215, 385), cv::Point2d(120, 260), cv::Point2d(330, 260)})
+    EXPECT_TRUE(contains(r->body, p)) << p << " not in " << r->body;
+  EXPECT_LE(r->body.br().y, 512.0);
+}
+
+TEST(FaceDetector, FindsNoFaceOutsideTheSkier) {
+  // GIVEN COCO 000000000785.jpg, one skier whose person box is [280.79, 44.73, 218.7, 346.68] (COCO val2017
+  // annotations, CC BY 4.0). Her face is small and partly covered: the cascade may miss it, but anything it
+  // reports must be on her.
+  FaceDetector d{TrackerParams{}};
+  const auto r = d.detect(photo("000000000785.jpg"));
+  if (r) {
+    const cv::Rect2d person(280.79, 44.73, 218.7, 346.68);
+    EXPECT_TRUE((r->face & person) == r->face) << r->face;
+  }
+}
+
+TEST(FaceDetector, DownscaledSearchFindsTheSameFace) {
+  TrackerParams p;
+  p.face.downscale = 2.0;
+  p.face.min_face_px = 16;
+  FaceDetector d(p);
+  const auto r = d.detect(photo("astronaut.png"));
+  ASSERT_TRUE(r.has_value());
+  EXPECT_TRUE(contains(r->face, {225, 115})) << r->face;
+}
+
+TEST(FaceDetector, MissingCascadeIsAClearError) {
+  TrackerParams p;
+  p.face.cascade = "/nonexistent/cascade.xml";
+  EXPECT_THROW(FaceDetector{p}, std::runtime_error);
+}
+
+TEST(FaceDetector, EmptyFrameFindsNothing) {
+  FaceDetector d{TrackerParams{}};
+  EXPECT_FALSE(d.detect(cv::Mat()).has_value());
+}
+
+}  // namespace
+}  // namespace gpilot

@@ -1,0 +1,178 @@
+// UserTracker on real frames: stays on the person of cf_tracking_sample, scores above a measured floor on
+// OTB Crossing (from ../shared, skipped without it), goes LOST within lost_frames when the scene is cut or
+// the person covered, re-acquires by face search, restarts on TRACKER_INIT, and replays identically.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "metrics.hpp"
+#include "sequence.hpp"
+#include "user_tracker.hpp"
+
+namespace gpilot {
+namespace {
+
+const std::string kSample = std::string(GPILOT_SOURCE_DIR) + "/data/tracking/cf_tracking_sample";
+// init_rect.txt of cf_tracking_sample (0-based): the man's upper body in frame 1.
+const cv::Rect2d kSampleInit(261, 48, 39, 65);
+
+std::vector<EvalFrame> load(const std::string& dir) {
+  std::vector<EvalFrame> frames;
+  auto src = open_otb(dir);
+  EvalFrame f;
+  while (src->next(f)) frames.push_back({f.image.clone(), f.truth});
+  return frames;
+}
+
+// The astronaut photograph in a 640x360 frame: a cut to another scene with a frontal face.
+cv::Mat astronaut_scene() {
+  const cv::Mat a = cv::imread(std::string(GPILOT_SOURCE_DIR) + "/data/people/astronaut.png", cv::IMREAD_COLOR);
+  cv::Mat frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
+  cv::resize(a, frame(cv::Rect(140, 0, 360, 360)), cv::Size(360, 360), 0, 0, cv::INTER_AREA);
+  return frame;
+}
+
+TEST(UserTracker, StaysOnThePersonOfTheRealSequence) {
+  const auto frames = load(kSample);
+  ASSERT_EQ(frames.size(), 53u);
+  UserTracker t{TrackerParams{}};
+  ASSERT_EQ(t.set_box(kSampleInit), "");
+  TrackOutput out;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    out = t.process(frames[i].image);
+    ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i + 1 << " psr " << out.confidence;
+    EXPECT_EQ(out.init, InitSource::kManual);
+    EXPECT_EQ(out.track_id, 1);
+  }
+  // The orange shirt in frame 53, boxed by hand on the image: x 284..322, y 100..164 (the camera has
+  // moved towards the man: he is lower in the frame and 0.98x the size).
+  const cv::Rect2d truth53(284, 100, 38, 64);
+  EXPECT_GT(iou(out.box, truth53), 0.6) << out.box;
+  EXPECT_LT(centre_error(out.box, truth53), 6.0) << out.box;
+}
+
+TEST(UserTracker, CrossingSuccessAboveTheMeasuredFloor) {
+  const std::string dir = std::string(GPILOT_SHARED_DIR) + "/data/tracking/otb_Crossing";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "needs " << dir << " (OTB Crossing is not redistributable)";
+  const auto frames = load(dir);
+  ASSERT_EQ(frames.size(), 120u);
+  UserTracker t{TrackerParams{}};
+  ASSERT_EQ(t.set_box(*frames[0].truth), "");
+  std::vector<double> ious, errors;
+  for (const auto& f : frames) {
+    const TrackOutput out = t.process(f.image);
+    ious.push_back(iou(out.box, *f.truth));
+    errors.push_back(centre_error(out.box, *f.truth));
+  }
+  const TrackScores s = score(ious, errors);
+  // Measured 2026-11-23 with the defaults: AUC 0.800, precision@20 1.000 (dlib 0.772, CSRT 0.703).
+  EXPECT_GT(s.success_auc, 0.76);
+  EXPECT_GT(s.precision_20px, 0.95);
+}
+
+TEST(UserTracker, CutToAnotherSceneIsLostThenTheFaceSearchFindsTheNewUser) {
+  const auto frames = load(kSample);
+  const TrackerParams p;
+  UserTracker t(p);
+  t.set_box(kSampleInit);
+  for (int i = 0; i < 15; ++i) ASSERT_EQ(t.process(frames[static_cast<size_t>(i)].image).status, TrackStatus::kTracking);
+  const cv::Rect2d last_good = t.last().box;
+
+  // WHEN the camera cuts to the astronaut
+  const cv::Mat cut = astronaut_scene();
+  int lost_at = -1;
+  for (int k = 1; k <= p.lost_frames + 2 && lost_at < 0; ++k) {
+    const TrackOutput out = t.process(cut);
+    if (out.status == TrackStatus::kLost) {
+      lost_at = k;
+      EXPECT_EQ(out.box, last_good);
+    }
+  }
+  // THEN the track is LOST after exactly lost_frames bad frames
+  EXPECT_EQ(lost_at, p.lost_frames);
+  // and the next frame's face search starts a new track on her.
+  const TrackOutput out = t.process(cut);
+  EXPECT_EQ(out.status, TrackStatus::kTracking);
+  EXPECT_EQ(out.init, InitSource::kFace);
+  EXPECT_EQ(out.track_id, 2);
+  // Her face is at about (140 + 225 * 360/512, 115 * 360/512) = (298, 81) in the cut frame.
+  EXPECT_TRUE(out.box.contains({298, 81})) << out.box;
+  EXPECT_TRUE(out.box.contains({298, 250})) << out.box;  // her chest
+}
+
+TEST(UserTracker, CoveredPersonIsLostAndStaysLostWithoutAFace) {
+  const auto frames = load(kSample);
+  TrackerParams p;
+  p.face.downscale = 2.0;  // the search after the loss finds nothing either way; halves its cost
+  UserTracker t(p);
+  t.set_box(kSampleInit);
+  int lost_at = -1;
+  for (int i = 0; i < 53; ++i) {
+    cv::Mat f = frames[static_cast<size_t>(i)].image.clone();
+    // From frame 20 on, a grey board covers the man (he is within x 230..350, y 30..200).
+    if (i >= 19) f(cv::Rect(200, 0, 200, 230)).setTo(cv::Scalar(128, 128, 128));
+    const TrackOutput out = t.process(f);
+    if (i < 19) {
+      ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i + 1;
+    } else if (out.status == TrackStatus::kLost && lost_at < 0) {
+      lost_at = i - 18;
+    }
+  }
+  EXPECT_EQ(lost_at, p.lost_frames);
+  // He is seen from behind: no face, so the tracker keeps searching.
+  EXPECT_EQ(t.last().status, TrackStatus::kLost);
+  EXPECT_EQ(t.last().track_id, 1);
+}
+
+TEST(UserTracker, SameFramesGiveIdenticalOutputs) {
+  const auto frames = load(kSample);
+  UserTracker a{TrackerParams{}}, b{TrackerParams{}};
+  a.set_box(kSampleInit);
+  b.set_box(kSampleInit);
+  for (const auto& f : frames) {
+    const TrackOutput x = a.process(f.image), y = b.process(f.image);
+    ASSERT_EQ(x.box, y.box);
+    ASSERT_EQ(x.confidence, y.confidence);
+    ASSERT_EQ(x.status, y.status);
+  }
+}
+
+TEST(UserTracker, ManualBoxResetAndBadInput) {
+  const auto frames = load(kSample);
+  UserTracker t{TrackerParams{}};
+  // No face in these frames (the man has his back to the camera): searching.
+  EXPECT_EQ(t.process(frames[0].image).status, TrackStatus::kSearching);
+  EXPECT_EQ(t.last().track_id, 0);
+  EXPECT_NE(t.set_box(cv::Rect2d(10, 10, 1, 40)), "");
+  EXPECT_NE(t.set_box(cv::Rect2d(NAN, 10, 20, 40)), "");
+  EXPECT_EQ(t.set_box(kSampleInit), "");
+  TrackOutput out = t.process(frames[1].image);
+  EXPECT_EQ(out.status, TrackStatus::kTracking);
+  EXPECT_EQ(out.init, InitSource::kManual);
+  EXPECT_EQ(out.track_id, 1);
+  EXPECT_GT(out.confidence, TrackerParams{}.lost_psr);
+
+  // A bad frame throws and leaves the track as it was.
+  const TrackOutput before = t.last();
+  EXPECT_THROW(t.process(cv::Mat()), std::invalid_argument);
+  EXPECT_THROW(t.process(cv::Mat(360, 640, CV_32FC3)), std::invalid_argument);
+  EXPECT_EQ(t.last().box, before.box);
+  EXPECT_EQ(t.process(frames[2].image).status, TrackStatus::kTracking);
+
+  // A box partly outside the frame is tracked on its visible part; a reset goes back to searching.
+  t.set_box(cv::Rect2d(600, 300, 100, 100));
+  out = t.process(frames[3].image);
+  EXPECT_EQ(out.track_id, 2);
+  EXPECT_LE(out.box.br().x, 641.0);
+  t.reset();
+  out = t.process(frames[4].image);
+  EXPECT_EQ(out.status, TrackStatus::kSearching);
+  EXPECT_EQ(out.init, InitSource::kNone);
+}
+
+}  // namespace
+}  // namespace gpilot

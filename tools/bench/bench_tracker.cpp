@@ -1,0 +1,60 @@
+// Tracker costs on one core: FHOG of a DSST-sized window, one DSST frame (track + learn) on 640x480 for a
+// near and a far person, and the Haar face search on a 640x480 frame.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "dsst.hpp"
+#include "fhog.hpp"
+#include "face_detector.hpp"
+// The textured scene of the DSST known-answer tests.
+#include "../../tests/unit/tracker/known_scene.hpp"
+
+namespace {
+
+void BM_FhogWindow(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const cv::Mat patch = gpilot::test::texture(cv::Size(100, 100), 11);
+  gpilot::Fhog f;
+  std::vector<cv::Mat> out;
+  for (auto _ : state) {
+    f.compute(patch, 4, out);
+    benchmark::DoNotOptimize(out[0].data);
+  }
+}
+BENCHMARK(BM_FhogWindow);
+
+// One DSST frame at 640x480: the texture slides by a sub-pixel step each frame under a person-sized box.
+void BM_DsstFrame640x480(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const int w = static_cast<int>(state.range(0)), h = static_cast<int>(state.range(1));
+  const cv::Mat tex = gpilot::test::texture(cv::Size(900, 700), 11);
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 16; ++i)
+    frames.push_back(gpilot::test::view(tex, cv::Point2d(450, 350), cv::Point2d(320 + 1.3 * std::sin(0.4 * i), 240 + 0.9 * std::cos(0.3 * i)),
+                                1.0, cv::Size(640, 480)));
+  gpilot::Dsst dsst{gpilot::DsstParams{}};
+  dsst.init(frames[0], cv::Rect2d(320 - w / 2.0, 240 - h / 2.0, w, h));
+  size_t i = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(dsst.update(frames[i]));
+    i = (i + 1) % frames.size();
+  }
+}
+BENCHMARK(BM_DsstFrame640x480)->Args({100, 260})->Args({40, 100})->Unit(benchmark::kMicrosecond);
+
+void BM_FaceSearch640x480(benchmark::State& state) {
+  cv::setNumThreads(1);
+  gpilot::TrackerParams p;
+  p.face.downscale = static_cast<double>(state.range(0));
+  gpilot::FaceDetector faces(p);
+  const cv::Mat frame = gpilot::test::texture(cv::Size(640, 480), 11);
+  for (auto _ : state) benchmark::DoNotOptimize(faces.detect(frame));
+}
+BENCHMARK(BM_FaceSearch640x480)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
