@@ -12,7 +12,7 @@ template <class Msg>
 Msg round_trip(const Msg& in, std::vector<uint8_t>* bytes_out = nullptr) {
   std::vector<uint8_t> bytes(in.getEncodedSize());
   EXPECT_EQ(in.encode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
-  Msg out;
+  Msg out{};  // value-initialised, as callers write it: catches LCM's float aliasing under -O2 (CMakeLists.txt)
   EXPECT_EQ(out.decode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
   // A truncated copy must not decode.
   Msg cut;
