@@ -1,9 +1,10 @@
-# gpilot_add_test(NAME name SOURCES ... [LIBS ...] [LABELS ...] [NETNS] [TIMEOUT s])
+# gpilot_add_test(NAME name SOURCES ... [LIBS ...] [LABELS ...] [NETNS] [TIMEOUT s] [CASES filter ...])
 #   A GoogleTest executable registered with ctest. Unit tests are discovered case by case. NETNS tests
 #   (real LCM traffic) run whole inside a private network namespace via tests/netns-run, which exits 77
-#   (skipped, with a message) where no namespace can be made.
+#   (skipped, with a message) where no namespace can be made; with CASES, one ctest entry per gtest filter
+#   (name:last part of the filter), each in its own namespace.
 function(gpilot_add_test)
-  cmake_parse_arguments(T "NETNS" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "NETNS" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 120)
   endif()
@@ -11,7 +12,15 @@ function(gpilot_add_test)
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_definitions(${T_NAME} PRIVATE GPILOT_SHARED_DIR="${GPILOT_SHARED_DIR}")
-  if(T_NETNS)
+  if(T_NETNS AND T_CASES)
+    foreach(_filter IN LISTS T_CASES)
+      string(REGEX REPLACE ".*/" "" _case "${_filter}")
+      add_test(NAME ${T_NAME}:${_case}
+        COMMAND ${CMAKE_SOURCE_DIR}/tests/netns-run $<TARGET_FILE:${T_NAME}> --gtest_filter=${_filter})
+      set_tests_properties(${T_NAME}:${_case} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
+        SKIP_RETURN_CODE 77 SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")
+    endforeach()
+  elseif(T_NETNS)
     add_test(NAME ${T_NAME} COMMAND ${CMAKE_SOURCE_DIR}/tests/netns-run $<TARGET_FILE:${T_NAME}>)
     set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_RETURN_CODE 77
       SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")

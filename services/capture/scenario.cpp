@@ -141,7 +141,7 @@ ArmPose ArmPose::preset(const std::string& name) {
   if (name == "down") return {30.0, 1.0, 0.0};
   // In front of the chest (above the body centre) and in front of the belly (below it), near the midline.
   if (name == "front_high") return from_hand_offset(-0.14, -0.14, 0.30);
-  if (name == "front_low") return from_hand_offset(-0.14, -0.30, 0.18);
+  if (name == "front_low") return from_hand_offset(-0.14, -0.45, 0.25);
   throw ScenarioError("unknown arm preset '" + name + "' (rest, out, up, down, front_high, front_low)");
 }
 

@@ -53,4 +53,14 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
   return d;
 }
 
+std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv::Rect& roi) {
+  const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return std::nullopt;
+  auto d = detect(frame(r));
+  if (!d) return std::nullopt;
+  d->face += cv::Point2d(r.tl());
+  d->body = body_from_face(d->face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+  return d;
+}
+
 }  // namespace gpilot

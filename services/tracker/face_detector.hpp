@@ -27,6 +27,8 @@ class FaceDetector {
 
   // The largest face in frame (CV_8UC3 or CV_8UC1), or none.
   std::optional<FaceDetection> detect(const cv::Mat& frame);
+  // The same, searching only the part of roi inside frame; boxes in frame pixels.
+  std::optional<FaceDetection> detect(const cv::Mat& frame, const cv::Rect& roi);
 
  private:
   TrackerParams p_;

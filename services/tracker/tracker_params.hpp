@@ -74,6 +74,12 @@ struct TrackerParams {
   // here: min 12.6 over OTB Crossing, 36 over cf_tracking_sample; 4..6 after a cut to another scene.
   double lost_psr = 7.0;               //!< PSR below this counts as a bad frame (and is not learnt)
   int lost_frames = 10;                //!< consecutive bad frames before LOST
+  // Not in the paper, which searches the face only to start: DSST's scale drifts by tens of percent while the
+  // drone backs off or closes in, and every hand rule is a ratio of the box. Every this many tracked frames
+  // the face is looked for where the box says it is (a small window, ~1 ms), and the box re-anchored on it
+  // when they disagree by more than face_recheck_tolerance (scale or shift, fraction of the box width).
+  int face_recheck_frames = 25;        //!< 0: never (the paper)
+  double face_recheck_tolerance = 0.05;
 
   template <class V>
   void visit(V& v) {
@@ -84,6 +90,8 @@ struct TrackerParams {
     v("body_top_in_faces", body_top_in_faces, 0.0, 5.0, "body box top above the face top, in face heights");
     v("lost_psr", lost_psr, 0.0, 100.0, "peak-to-sidelobe ratio below which a frame is bad");
     v("lost_frames", lost_frames, 1, 1000, "consecutive bad frames before the track is LOST");
+    v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
+    v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
   }
 };
 

@@ -45,8 +45,9 @@ class UserTracker {
   int bad_frames() const { return bad_frames_; }
 
  private:
-  void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source);
+  void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
   void search(const cv::Mat& frame);
+  void recheck_face(const cv::Mat& frame);
 
   TrackerParams p_;
   FaceDetector faces_;
@@ -56,6 +57,7 @@ class UserTracker {
   cv::Rect2d last_good_box_;
   cv::Size frame_size_;
   int bad_frames_ = 0;
+  int frames_since_face_ = 0;
 };
 
 }  // namespace gpilot

@@ -1,6 +1,6 @@
 // gpilot-launch: starts the processes of deploy/services.yaml in order, restarts the ones that die,
 // shows progress (time, frames, mode, each stage's rate) and stops them all cleanly, in reverse order, on
-// Ctrl-C, at --duration, or when a service marked ends_run exits. Reads HEALTH and GESTURE_CMD; writes
+// Ctrl-C, at --duration, or when a service marked ends_run exits. Reads HEALTH, USER_TRACK and GESTURE_CMD; writes
 // FLIGHT_CONTROL (with --engage) and its own HEALTH.
 #include <csignal>
 #include <cstdio>
@@ -17,6 +17,7 @@
 #include "paths.hpp"
 #include "service_cli.hpp"
 #include "service_set.hpp"
+#include "gpilot/user_track_t.hpp"
 
 namespace fs = std::filesystem;
 
@@ -128,6 +129,10 @@ int main(int argc, char** argv) {
     int8_t mode = -1;
     node.subscribe<health_t>("HEALTH", [&](const health_t& h, int64_t) { health[h.name] = h; });
     node.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t& g, int64_t) { mode = g.mode; });
+    // Frames that made it through the tracker: one USER_TRACK each (listening to CAMERA would copy every image).
+    long long frames = 0;
+    node.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t&, int64_t) { ++frames; });
+    std::fprintf(stderr, "gpilot-launch: progress each second: frames tracked, decided mode, each stage's messages/s in>out\n");
 
     std::vector<Child> children;
     for (const auto& s : specs) {
@@ -161,9 +166,10 @@ int main(int argc, char** argv) {
           c.pid = -1;
           const std::string how = WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
                                                     : std::string("killed by signal ") + strsignal(WTERMSIG(status));
-          if (c.spec.ends_run) {
+          // A source that reaches its end exits 0 and ends the run; one that crashes is restarted like any stage.
+          if (c.spec.ends_run && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
             std::fprintf(stderr, "gpilot-launch: %s %s: run complete\n", c.spec.name.c_str(), how.c_str());
-            exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+            exit_code = 0;
             node.stop();
             return;
           }
@@ -196,7 +202,6 @@ int main(int argc, char** argv) {
     });
     node.every(1.0, [&] {
       const double t = (monotonic_utime() - start) * 1e-6;
-      long long frames = health.count("gpilot-capture") ? health["gpilot-capture"].messages_out : 0;
       std::fprintf(stderr, "[%6.1f s] frames %lld | mode %s |", t, frames, mode >= 0 && mode <= 5 ? kModeNames[mode] : "-");
       for (const auto& c : children) {
         const auto it = health.find(c.spec.name);
@@ -204,7 +209,7 @@ int main(int argc, char** argv) {
         if (c.pid < 0)
           std::fprintf(stderr, " %s DOWN", shortname.c_str());
         else if (it != health.end())
-          std::fprintf(stderr, " %s %.0f/s", shortname.c_str(), it->second.rate_out_hz);
+          std::fprintf(stderr, " %s %.0f>%.0f", shortname.c_str(), it->second.rate_in_hz, it->second.rate_out_hz);
       }
       std::fprintf(stderr, "\n");
     });
