@@ -9,7 +9,8 @@ namespace gpilot {
 struct FlightParams {
   std::string backend = "sim";        //!< sim (built-in quadrotor), mavlink, or none (LCM only)
   double command_spacing_s = 0.6;     //!< the paper's wait between gesture commands (600 ms)
-  double stale_timeout_s = 0.3;       //!< command, track or vehicle state older than this: hover
+  double stale_timeout_s = 0.25;      //!< command, track or vehicle state older than this: hover (with the
+                                      //!< 50 Hz setpoint period, a dead stage gives zero within 0.3 s)
   double setpoint_rate_hz = 50.0;     //!< FLIGHT_SETPOINT (and MAVLink setpoint) rate
   double gain_horizontal = 1.0;       //!< m/s per user-box width of hand offset, sideways
   double gain_vertical = 1.0;         //!< m/s per user-box width of hand offset, up/down

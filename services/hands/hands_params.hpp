@@ -31,7 +31,7 @@ struct HandsParams {
   double roi_extend_bottom = 0.0;   //!< added below, in user box heights
   // Inside the user box, face/neck and legs/feet are removed by preset ratios of the box (the paper's numbers are not given).
   double face_remove_ratio = 0.2;   //!< top fraction of the box removed (face and neck)
-  double legs_remove_ratio = 0.30;  //!< bottom fraction of the box removed (legs, feet, hands at rest): below the
+  double legs_remove_ratio = 0.35;  //!< bottom fraction of the box removed (legs, feet, hands at rest): below the
                                     //!< hips, so a hand low in front of the body (FURTHER) stays in
   double shoulder_centre_ratio = 0.2;  //!< p_uc sits this fraction of the box height below its top, centred
   double body_centre_ratio = 0.5;   //!< p_bc: the box centre (the paper)

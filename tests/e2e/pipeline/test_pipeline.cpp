@@ -102,8 +102,8 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
   if (!kill_stage.empty()) {
     usleep(static_cast<useconds_t>(kill_at_s * 1e6));
     const std::string cmd = "pkill -KILL -x " + kill_stage.substr(0, 15);
-    if (killed_at) *killed_at = wall_utime();
     EXPECT_EQ(std::system(cmd.c_str()), 0) << "could not kill " << kill_stage;
+    if (killed_at) *killed_at = wall_utime();  // pkill has returned: the stage is dead
   }
   int status = 0;
   waitpid(pid, &status, 0);
@@ -151,10 +151,10 @@ void camera_to_world(const float c[3], double yaw, double w[3]) {
 struct Judged { int checked = 0; std::map<int, int> per_gesture; };
 
 // Judges every true-gesture segment long enough to act on, from a settling time after it starts to its end:
-// 1.2 s for a gesture (half the paper's 60-frame buffers must fill), 2 s for rest (the buffers must also
-// empty of the last gesture, and the vehicle stop).
+// 1.2 s for a gesture (half the paper's 60-frame buffers must fill), 2.6 s for rest (the arm comes down, the
+// buffers empty of the last gesture, 1.2 s, and the vehicle stops).
 Judged judge_gestures(const Recorded& r) {
-  constexpr int64_t kSettle = 1'200'000, kSettleRest = 2'000'000, kMinJudged = 800'000;
+  constexpr int64_t kSettle = 1'200'000, kSettleRest = 2'600'000, kMinJudged = 800'000;
   Judged j;
   for (const auto& seg : truth_segments(r)) {
     const int64_t from = seg.t0 + (seg.gesture == ground_truth_t::GESTURE_REST ? kSettleRest : kSettle), to = seg.t1;

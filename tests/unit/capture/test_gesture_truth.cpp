@@ -73,14 +73,14 @@ TEST(GestureTruth, HandInFrontAboveTheCentreIsCloserBelowIsFurther) {
   EXPECT_EQ(e.vector, cv::Point2f(5, -30));
   EXPECT_EQ(e.mode, gesture_cmd_t::MODE_CLOSER);
   EXPECT_FLOAT_EQ(e.direction.z, 1.0f);  // toward the user
-  e = run({145, 155});  // band ends at 250 - 0.45 * 200 = 160
+  e = run({145, 155});  // band ends at 250 - 0.35 * 200 = 180
   EXPECT_EQ(e.mode, gesture_cmd_t::MODE_FURTHER);
   EXPECT_FLOAT_EQ(e.direction.z, -1.0f);
 }
 
 TEST(GestureTruth, FrontHandOutsideTheGateOrTheBandIsNothing) {
   EXPECT_EQ(run({171, 120}).kind, hand_obs_t::KIND_NONE);  // |dx| = 21 >= w/5 = 20
-  EXPECT_EQ(run({150, 170}).kind, hand_obs_t::KIND_NONE);  // in the removed legs band
+  EXPECT_EQ(run({150, 190}).kind, hand_obs_t::KIND_NONE);  // in the removed legs band
   EXPECT_EQ(run({150, 80}).kind, hand_obs_t::KIND_NONE);   // in the removed face band (top 0.2 = 90)
 }
 

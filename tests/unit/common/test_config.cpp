@@ -58,7 +58,6 @@ TEST(Config, DefaultsAreThePapersNumbers) {
 
   const auto flight = c.section<FlightParams>("flight");
   EXPECT_DOUBLE_EQ(flight.command_spacing_s, 0.6);
-  EXPECT_DOUBLE_EQ(flight.stale_timeout_s, 0.3);
 }
 
 TEST(Config, EmptyFileGivesDefaults) {

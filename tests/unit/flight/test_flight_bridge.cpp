@@ -155,15 +155,15 @@ TEST(FlightBridge, StaleCommandTrackOrVehicleSendsZero) {
   for (const Case c : {Case{&BridgeInputs::command_received, reason::kStaleCommand},
                        Case{&BridgeInputs::track_received, reason::kStaleTrack},
                        Case{&BridgeInputs::vehicle_received, reason::kStaleVehicle}}) {
-    FlightBridge b{FlightParams{}};  // stale after 0.3 s
+    FlightBridge b{FlightParams{}};  // stale after 0.25 s
     BridgeInputs in = ready(fine(-0.5, 0));
-    in.now = kT0 + 300 * kMs;  // exactly 0.3 s: still fresh
-    in.command_received = in.track_received = in.vehicle_received = kT0 + 300 * kMs;
+    in.now = kT0 + 250 * kMs;  // exactly 0.25 s: still fresh
+    in.command_received = in.track_received = in.vehicle_received = kT0 + 250 * kMs;
     in.*c.received = kT0;
     Setpoint sp = b.update(in);
     EXPECT_FALSE(sp.is_zero());
     EXPECT_EQ(sp.reasons, 0);
-    in.now += 1;  // 0.300001 s old
+    in.now += 1;  // 0.250001 s old
     sp = b.update(in);
     EXPECT_TRUE(sp.is_zero());
     EXPECT_EQ(sp.reasons, c.bit);

@@ -42,7 +42,7 @@ TEST_F(Fixture, GeometryFollowsThePaper) {
   EXPECT_FLOAT_EQ(g.body_centre.y, 180);
   EXPECT_EQ(g.roi, cv::Rect(0, 60, 300, 200));  // 1.5 w each side (clipped at 0), 0.25 h above
   EXPECT_EQ(g.face_rows_end, 132);
-  EXPECT_EQ(g.legs_rows_begin, 188);
+  EXPECT_EQ(g.legs_rows_begin, 204);
 }
 
 TEST_F(Fixture, EmptyMaskIsNone) {
@@ -190,7 +190,7 @@ TEST(HandDetector, WholeStageRemovesFaceAndLegsAndFindsTheArm) {
   ASSERT_LT(model.level(200, 60, 20), 10);
   cv::Mat frame(kImage, CV_8UC3, blue);
   cv::rectangle(frame, cv::Rect(125, 100, 30, 32), skin, cv::FILLED);  // face/neck: rows 100..131, removed
-  cv::rectangle(frame, cv::Rect(110, 190, 60, 70), skin, cv::FILLED);  // legs: rows 190..259, removed
+  cv::rectangle(frame, cv::Rect(110, 204, 60, 56), skin, cv::FILLED);  // legs: rows 204..259, removed
   cv::rectangle(frame, cv::Rect(102, 160, 10, 12), skin, cv::FILLED);  // resting hands at the box sides
   cv::rectangle(frame, cv::Rect(168, 160, 10, 12), skin, cv::FILLED);
   // WHEN nothing is stretched out THEN NONE (the resting hands are 28 and 29 px from p_bc.x, outside w/5 = 16).
