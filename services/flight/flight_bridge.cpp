@@ -145,6 +145,13 @@ Setpoint FlightBridge::update(const BridgeInputs& in) {
     sp.velocity[2] = std::copysign(params_.max_vertical_speed, sp.velocity[2]);
     sp.reasons |= reason::kClipped;
   }
+  if (in.vehicle) {
+    const double height = -in.vehicle->position[2];  // NED down; body z is down too
+    if ((sp.velocity[2] < 0 && height >= params_.max_height_m) || (sp.velocity[2] > 0 && height <= params_.min_height_m)) {
+      sp.velocity[2] = 0.0;
+      sp.reasons |= reason::kHeightLimit;
+    }
+  }
   sp.yaw_rate = yaw_rate_for(params_, *in.track);
   if (std::fabs(sp.yaw_rate) > params_.max_yaw_rate) {
     sp.yaw_rate = std::copysign(params_.max_yaw_rate, sp.yaw_rate);

@@ -22,6 +22,10 @@ struct FlightParams {
   double max_yaw_rate = 0.8;          //!< rad/s
   double max_command_magnitude = 3.0; //!< |x|, |y| of a command above this many box widths is invalid (hover)
   bool require_vehicle_state = true;  //!< hover without a fresh VEHICLE_STATE (off only for LCM-only dry runs)
+  // A height band (above the position origin: the sim's ground, the autopilot's home): no climb above, no
+  // descent below. Without a top, a user who keeps an arm up flies the drone until they are out of view.
+  double min_height_m = 0.5;
+  double max_height_m = 10.0;
 
   template <class V>
   void visit(V& v) {
@@ -40,6 +44,8 @@ struct FlightParams {
     v("max_command_magnitude", max_command_magnitude, 0.1, 100.0,
       "command x or y beyond this many box widths is invalid: hover");
     v("require_vehicle_state", require_vehicle_state, "hover unless a fresh vehicle state has been received");
+    v("min_height_m", min_height_m, 0.0, 1000.0, "no descent below this height above the origin, m");
+    v("max_height_m", max_height_m, 0.0, 1000.0, "no climb above this height above the origin, m");
   }
 };
 

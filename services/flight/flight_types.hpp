@@ -37,6 +37,7 @@ constexpr int32_t kInvalidInput = 64;
 constexpr int32_t kCommandDelay = 128;
 constexpr int32_t kClipped = 256;
 constexpr int32_t kLanding = 512;
+constexpr int32_t kHeightLimit = 1024;
 }  // namespace reason
 
 struct Setpoint {

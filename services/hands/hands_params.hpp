@@ -26,7 +26,8 @@ struct SkinParams {
 struct HandsParams {
   SkinParams skin;
   // Search rectangle: the user box extended sideways and up, so that a stretched-out arm is inside it.
-  double roi_extend_side = 1.5;     //!< added on each side, in user box widths
+  double roi_extend_side = 1.2;     //!< added on each side, in user box widths: an arm's reach (shoulder
+                                    //!< 0.35 w from the centre, arm 1.3 w), so skin beyond it is not taken for a hand
   double roi_extend_top = 0.25;     //!< added above, in user box heights
   double roi_extend_bottom = 0.0;   //!< added below, in user box heights
   // Inside the user box, face/neck and legs/feet are removed by preset ratios of the box (the paper's numbers are not given).

@@ -119,6 +119,7 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   t.box[3] = 300;
   in.track = t;
   in.vehicle = VehicleState{};
+  in.vehicle->position[2] = -1.5;  // in the air, inside the height band
   in.engaged = true;
   const Setpoint sp = bridge.update(in);
   ASSERT_EQ(sp.reasons, 0);

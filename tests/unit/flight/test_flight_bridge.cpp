@@ -51,6 +51,7 @@ BridgeInputs ready(const GestureCommand& c) {
   in.track = centred_track();
   in.track_received = kT0;
   in.vehicle = VehicleState{};
+  in.vehicle->position[2] = -1.5;  // 1.5 m up, inside the height band
   in.vehicle_received = kT0;
   in.engaged = true;
   return in;
@@ -87,6 +88,26 @@ TEST(FlightBridge, ArmUpClimbsCloserGoesForwardFurtherBack) {
     FlightBridge b{p};
     const Setpoint sp = b.update(ready(with_mode(GestureMode::Further, -1.0)));
     EXPECT_DOUBLE_EQ(sp.velocity[0], -0.5);
+  }
+}
+
+TEST(FlightBridge, NoClimbAboveTheHeightBandNoDescentBelowIt) {
+  FlightParams p;
+  p.min_height_m = 0.5;
+  p.max_height_m = 3.0;
+  GestureCommand up = fine(0.0, -0.4), down = fine(0.0, 0.4);
+  up.mode = GestureMode::Up;
+  down.mode = GestureMode::Down;
+  struct Case { GestureCommand c; double height, vz; int32_t reasons; };
+  for (const Case& k : {Case{up, 2.9, -0.4, 0}, Case{up, 3.0, 0.0, reason::kHeightLimit},
+                        Case{down, 3.0, 0.4, 0}, Case{down, 0.6, 0.4, 0}, Case{down, 0.5, 0.0, reason::kHeightLimit},
+                        Case{up, 0.2, -0.4, 0}}) {
+    FlightBridge b{p};
+    BridgeInputs in = ready(k.c);
+    in.vehicle->position[2] = -k.height;
+    const Setpoint sp = b.update(in);
+    EXPECT_DOUBLE_EQ(sp.velocity[2], k.vz) << "at " << k.height << " m";
+    EXPECT_EQ(sp.reasons, k.reasons) << "at " << k.height << " m";
   }
 }
 

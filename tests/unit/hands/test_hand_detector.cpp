@@ -40,7 +40,7 @@ TEST_F(Fixture, GeometryFollowsThePaper) {
   EXPECT_FLOAT_EQ(g.shoulder_centre.x, 140);
   EXPECT_FLOAT_EQ(g.shoulder_centre.y, 132);
   EXPECT_FLOAT_EQ(g.body_centre.y, 180);
-  EXPECT_EQ(g.roi, cv::Rect(0, 60, 300, 200));  // 1.5 w each side (clipped at 0), 0.25 h above
+  EXPECT_EQ(g.roi, cv::Rect(4, 60, 272, 200));  // 1.2 w each side, 0.25 h above
   EXPECT_EQ(g.face_rows_end, 132);
   EXPECT_EQ(g.legs_rows_begin, 204);
 }
@@ -208,5 +208,5 @@ TEST(HandDetector, WholeStageRemovesFaceAndLegsAndFindsTheArm) {
   EXPECT_EQ(r.hand_skin, 144);
   EXPECT_FLOAT_EQ(r.vector.x, -108);
   EXPECT_FLOAT_EQ(r.vector.y, -5);
-  EXPECT_EQ(d.last_roi(), cv::Rect(0, 60, 300, 200));
+  EXPECT_EQ(d.last_roi(), cv::Rect(4, 60, 272, 200));
 }
