@@ -152,12 +152,17 @@ struct Judged { int checked = 0; std::map<int, int> per_gesture; };
 
 // Judges every true-gesture segment long enough to act on, from a settling time after it starts to its end:
 // 1.2 s for a gesture (half the paper's 60-frame buffers must fill), 2.6 s for rest (the arm comes down, the
-// buffers empty of the last gesture, 1.2 s, and the vehicle stops).
+// buffers empty of the last gesture, 1.2 s, and the vehicle stops), 2.7 s for an arm pointing elsewhere
+// right after another (Alg. 3 averages the buffer's non-zero entries: the old direction is gone after 2.4 s).
 Judged judge_gestures(const Recorded& r) {
-  constexpr int64_t kSettle = 1'200'000, kSettleRest = 2'600'000, kMinJudged = 800'000;
+  constexpr int64_t kSettle = 1'200'000, kSettleRest = 2'600'000, kSettleTurn = 2'700'000, kMinJudged = 800'000;
   Judged j;
+  std::optional<int64_t> pointed_until;  // end of the last OUT piece that filled the buffer
   for (const auto& seg : truth_segments(r)) {
-    const int64_t from = seg.t0 + (seg.gesture == ground_truth_t::GESTURE_REST ? kSettleRest : kSettle), to = seg.t1;
+    const bool turn = seg.gesture == ground_truth_t::GESTURE_OUT && pointed_until && seg.t0 - *pointed_until < 2'400'000;
+    if (seg.gesture == ground_truth_t::GESTURE_OUT && seg.t1 - seg.t0 > kSettle) pointed_until = seg.t1;
+    const int64_t settle = seg.gesture == ground_truth_t::GESTURE_REST ? kSettleRest : turn ? kSettleTurn : kSettle;
+    const int64_t from = seg.t0 + settle, to = seg.t1;
     if (to - from < kMinJudged) continue;
     const auto a = state_at(r, from), b = state_at(r, to);
     if (!a || !b) continue;
