@@ -59,11 +59,15 @@ int main(int argc, char** argv) {
                  "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
                  "decide (HAND_OBS -> GESTURE_CMD), or a chain such as tracker,hands,decide.");
   std::string in_path, out_path, stage_arg;
-  bool check = false;
+  bool check = false, inputs_only = false;
+  double from_s = 0, to_s = 0;
   cli.app().add_option("log", in_path, "the recorded LCM log")->required();
   cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide")->required();
   cli.app().add_option("--out", out_path, "write the new log here");
   cli.app().add_flag("--check", check, "compare the new outputs with the recorded ones (exit 1 on any difference)");
+  cli.app().add_option("--from", from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
+  cli.app().add_option("--to", to_s, "stop this many seconds after the log's first event (0 = the end)")->check(CLI::NonNegativeNumber);
+  cli.app().add_flag("--inputs-only", inputs_only, "the new log holds only the stages' inputs and outputs (small logs)");
   return cli.run(argc, argv, [&](const Config& config) -> int {
     std::vector<std::string> chain;
     std::stringstream ss(stage_arg);
@@ -109,8 +113,12 @@ int main(int argc, char** argv) {
         write(now_ts, ch, data, size);
       });
 
-    int64_t n_events = 0, n_inputs = 0;
+    int64_t n_events = 0, n_inputs = 0, first_ts = -1;
     for (const lcm::LogEvent* ev = in.readNextEvent(); ev; ev = in.readNextEvent()) {
+      if (first_ts < 0) first_ts = ev->timestamp;
+      const double t = (ev->timestamp - first_ts) * 1e-6;
+      if (t < from_s) continue;
+      if (to_s > 0 && t > to_s) break;
       ++n_events;
       now_ts = ev->timestamp;
       const auto* p = static_cast<const uint8_t*>(ev->data);
@@ -119,8 +127,9 @@ int main(int argc, char** argv) {
         continue;
       }
       if (ev->channel == "HEALTH") continue;  // the live processes' health is not part of a replay
-      write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
-      if (!inputs.count(ev->channel)) continue;
+      const bool input = inputs.count(ev->channel) > 0;
+      if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+      if (!input) continue;
       ++n_inputs;
       node.publish_raw(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       node.drain();
