@@ -115,7 +115,9 @@ int main(int argc, char** argv) {
       fs::create_directories(systemd_dir);
       std::string after;
       for (const auto& s : specs) {
-        if (s.ends_run) continue;  // run-bounded processes (a scenario source) have no boot-time unit
+        if (!service_wanted(s, vars)) continue;
+        // A source that ends a run (a scenario, a file) is restarted by systemd like any other: on a companion
+        // computer it is the camera, which does not end.
         std::ofstream(fs::path(systemd_dir) / (s.name + ".service")) << systemd_unit(s, fs::absolute(bin_dir).string(), after, url);
         std::printf("wrote %s/%s.service\n", systemd_dir.c_str(), s.name.c_str());
         after = s.name;
@@ -136,9 +138,7 @@ int main(int argc, char** argv) {
 
     std::vector<Child> children;
     for (const auto& s : specs) {
-      bool wanted = true;
-      for (const auto& v : s.only_if) wanted = wanted && !vars[v].empty();
-      if (!wanted) continue;
+      if (!service_wanted(s, vars)) continue;
       Child c{s, find_binary(s.command[0], bin_dir)};
       if (c.path.empty()) {
         if (s.optional) {

@@ -81,6 +81,14 @@ std::vector<ServiceSpec> parse_service_set(const std::string& yaml_text, const s
   return out;
 }
 
+bool service_wanted(const ServiceSpec& spec, const std::map<std::string, std::string>& vars) {
+  for (const auto& v : spec.only_if) {
+    const auto it = vars.find(v);
+    if (it == vars.end() || it->second.empty()) return false;
+  }
+  return true;
+}
+
 std::string systemd_unit(const ServiceSpec& spec, const std::string& bin_dir, const std::string& after,
                          const std::string& lcm_url) {
   std::ostringstream u;
@@ -91,7 +99,7 @@ std::string systemd_unit(const ServiceSpec& spec, const std::string& bin_dir, co
   for (size_t i = 0; i < spec.command.size(); ++i) {
     const std::string& w = spec.command[i];
     if (i == 0 && w.find('/') == std::string::npos)
-      u << bin_dir << "/" << w;
+      u << (w.rfind("gpilot-", 0) == 0 ? bin_dir : std::string("/usr/bin")) << "/" << w;  // lcm-logger: Debian's
     else
       u << (i ? " " : "") << (w.find(' ') != std::string::npos ? "\"" + w + "\"" : w);
   }

@@ -33,6 +33,9 @@ std::vector<ServiceSpec> parse_service_set(const std::string& yaml_text, const s
 // "${a} x ${b}" with vars; throws ServiceSetError naming an unknown variable.
 std::string substitute(const std::string& text, const std::map<std::string, std::string>& vars);
 
+// Whether the service runs with these variables (every only_if variable non-empty).
+bool service_wanted(const ServiceSpec& spec, const std::map<std::string, std::string>& vars);
+
 // A systemd unit for one service: ExecStart from bin_dir, Restart from respawn, KillSignal, TimeoutStopSec,
 // ordered After= the service before it.
 std::string systemd_unit(const ServiceSpec& spec, const std::string& bin_dir, const std::string& after,

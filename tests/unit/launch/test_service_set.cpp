@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 
@@ -77,6 +80,45 @@ TEST(ServiceSet, ShippedFileParsesWithRunVariables) {
   EXPECT_EQ(s.front().name, "lcm-logger");  // records from the first message
   EXPECT_EQ(s.back().name, "gpilot-capture");  // frames flow only once every stage listens
   EXPECT_TRUE(s.back().ends_run);
+}
+
+TEST(ServiceSet, OnlyIfVariablesDecideWhatRuns) {
+  ServiceSpec s;
+  s.only_if = {"log"};
+  EXPECT_TRUE(service_wanted(s, {{"log", "x.lcmlog"}}));
+  EXPECT_FALSE(service_wanted(s, {{"log", ""}}));
+  EXPECT_FALSE(service_wanted(s, {}));
+  EXPECT_TRUE(service_wanted(ServiceSpec{}, {}));
+}
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// deploy/systemd/*.service are what deploy/systemd/generate writes now (from deploy/services.yaml).
+TEST(ServiceSet, CommittedSystemdUnitsAreTheGeneratedOnes) {
+  namespace fs = std::filesystem;
+  const fs::path shipped = fs::path(GPILOT_SOURCE_DIR) / "deploy/systemd";
+  const fs::path fresh = fs::temp_directory_path() / ("gpilot-units-" + std::to_string(::getpid()));
+  const std::string cmd = (shipped / "generate").string() + " " + fresh.string() + " > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  int units = 0;
+  for (const auto& f : fs::directory_iterator(fresh)) {
+    ++units;
+    const fs::path committed = shipped / f.path().filename();
+    ASSERT_TRUE(fs::exists(committed)) << committed << " is missing: run deploy/systemd/generate";
+    EXPECT_EQ(read_file(f.path()), read_file(committed)) << committed << " is stale: run deploy/systemd/generate";
+  }
+  for (const auto& f : fs::directory_iterator(shipped)) {
+    if (f.path().extension() == ".service") {
+      EXPECT_TRUE(fs::exists(fresh / f.path().filename())) << f.path() << " is no longer generated";
+    }
+  }
+  EXPECT_EQ(units, 5);  // capture, tracker, hands, decide, flight: no logger and no video on the drone
+  fs::remove_all(fresh);
 }
 
 }  // namespace
