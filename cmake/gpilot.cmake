@@ -3,6 +3,7 @@
 #   (real LCM traffic) run whole inside a private network namespace via tests/netns-run, which exits 77
 #   (skipped, with a message) where no namespace can be made; with CASES, one ctest entry per gtest filter
 #   (name:last part of the filter), each in its own namespace.
+#   Every test sees tests/support (helpers shared by tests, e.g. child_process.hpp).
 function(gpilot_add_test)
   cmake_parse_arguments(T "NETNS" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
   if(NOT T_TIMEOUT)
@@ -12,6 +13,7 @@ function(gpilot_add_test)
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_definitions(${T_NAME} PRIVATE GPILOT_SHARED_DIR="${GPILOT_SHARED_DIR}")
+  target_include_directories(${T_NAME} PRIVATE ${CMAKE_SOURCE_DIR}/tests/support)
   if(T_NETNS AND T_CASES)
     foreach(_filter IN LISTS T_CASES)
       string(REGEX REPLACE ".*/" "" _case "${_filter}")

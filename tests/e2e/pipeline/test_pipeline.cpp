@@ -25,6 +25,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "child_process.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/health_t.hpp"
@@ -81,32 +82,22 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
                          const std::string& kill_stage = "", double kill_at_s = 0, int64_t* killed_at = nullptr) {
   fs::create_directories(dir);
   const std::string log = dir + "/log.lcmlog";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const std::string bin = std::string(GPILOT_BIN_DIR) + "/gpilot-launch";
-    const std::string src = GPILOT_SOURCE_DIR;
-    std::vector<std::string> args = {bin, "--services", src + "/deploy/services.yaml", "--engage",
-                                     "--duration", std::to_string(duration_s),
-                                     "--var", "config=" + src + "/deploy/config/synthetic.yaml",
-                                     "--var", "source_flag=--synthetic",
-                                     "--var", "source=" + src + "/deploy/scenarios/" + scenario + ".yaml",
-                                     "--var", "capture_extra=", "--var", "backend=sim",
-                                     "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=" + log,
-                                     "--var", "video_out=" + dir + "/annotated.mp4"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(bin.c_str(), argv.data());
-    _exit(127);
-  }
+  const std::string src = GPILOT_SOURCE_DIR;
+  test::ChildProcess launch({std::string(GPILOT_BIN_DIR) + "/gpilot-launch", "--services", src + "/deploy/services.yaml",
+                             "--engage", "--duration", std::to_string(duration_s),
+                             "--var", "config=" + src + "/deploy/config/synthetic.yaml",
+                             "--var", "source_flag=--synthetic",
+                             "--var", "source=" + src + "/deploy/scenarios/" + scenario + ".yaml",
+                             "--var", "capture_extra=", "--var", "backend=sim",
+                             "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=" + log,
+                             "--var", "video_out=" + dir + "/annotated.mp4"});
   if (!kill_stage.empty()) {
     usleep(static_cast<useconds_t>(kill_at_s * 1e6));
     const std::string cmd = "pkill -KILL -x " + kill_stage.substr(0, 15);
     EXPECT_EQ(std::system(cmd.c_str()), 0) << "could not kill " << kill_stage;
     if (killed_at) *killed_at = wall_utime();  // pkill has returned: the stage is dead
   }
-  int status = 0;
-  waitpid(pid, &status, 0);
+  const int status = launch.wait();
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "gpilot-launch failed on " << scenario;
   return log;
 }

@@ -16,6 +16,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "child_process.hpp"
 #include "gpilot/health_t.hpp"
 
 namespace fs = std::filesystem;
@@ -28,24 +29,7 @@ const std::string kUrlTtl0 = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194
 
 void sh(const std::string& cmd) { ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd; }
 
-pid_t spawn(std::vector<std::string> args) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execvp(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-int stop(pid_t pid) {
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return status;
-}
+using test::ChildProcess;
 
 struct Heard { std::map<std::string, int> channels; std::map<std::string, int> health; };
 
@@ -86,22 +70,21 @@ class TwoHosts : public ::testing::Test {
 TEST_F(TwoHosts, GroundStationHearsEveryChannelOfTheDrone) {
   const std::string src = GPILOT_SOURCE_DIR, bin = GPILOT_BIN_DIR;
   const std::string log = dir_ + "/ground.lcmlog", video = dir_ + "/ground.mp4";
-  const pid_t logger = spawn({"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl1, log});
-  const pid_t view = spawn({"ip", "netns", "exec", "ground", bin + "/gpilot-view", "--headless", "--video", video,
-                            "--lcm-url", kUrlTtl1});
+  ChildProcess logger({"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl1, log});
+  ChildProcess view({"ip", "netns", "exec", "ground", bin + "/gpilot-view", "--headless", "--video", video,
+                     "--lcm-url", kUrlTtl1});
   usleep(500'000);
-  const pid_t drone = spawn({"ip", "netns", "exec", "drone", bin + "/gpilot-launch", "--services", src + "/deploy/services.yaml",
-                             "--engage", "--duration", "12", "--lcm-url", kUrlTtl1,
-                             "--var", "config=" + src + "/deploy/config/synthetic.yaml", "--var", "source_flag=--synthetic",
-                             "--var", "source=" + src + "/deploy/scenarios/tour.yaml", "--var", "capture_extra=",
-                             "--var", "backend=sim", "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=",
-                             "--var", "video_out="});
-  int status = 0;
-  waitpid(drone, &status, 0);
+  ChildProcess drone({"ip", "netns", "exec", "drone", bin + "/gpilot-launch", "--services", src + "/deploy/services.yaml",
+                      "--engage", "--duration", "12", "--lcm-url", kUrlTtl1,
+                      "--var", "config=" + src + "/deploy/config/synthetic.yaml", "--var", "source_flag=--synthetic",
+                      "--var", "source=" + src + "/deploy/scenarios/tour.yaml", "--var", "capture_extra=",
+                      "--var", "backend=sim", "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=",
+                      "--var", "video_out="});
+  const int status = drone.wait();
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "gpilot-launch on the drone failed";
   usleep(300'000);
-  stop(view);
-  stop(logger);
+  view.stop(SIGINT);
+  logger.stop(SIGINT);
 
   const Heard h = read_log(log);
   for (const char* ch : {"CAMERA", "GROUND_TRUTH", "USER_TRACK", "HAND_OBS", "GESTURE_CMD", "FLIGHT_CONTROL",
@@ -118,13 +101,13 @@ TEST_F(TwoHosts, GroundStationHearsEveryChannelOfTheDrone) {
 TEST_F(TwoHosts, AtTtlZeroNothingLeavesTheDrone) {
   const std::string src = GPILOT_SOURCE_DIR, bin = GPILOT_BIN_DIR;
   const std::string log = dir_ + "/ground.lcmlog", local = dir_ + "/drone.lcmlog";
-  const pid_t logger = spawn({"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl0, log});
-  const pid_t on_drone = spawn({"ip", "netns", "exec", "drone", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl0, local});
+  ChildProcess logger({"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl0, log});
+  ChildProcess on_drone({"ip", "netns", "exec", "drone", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl0, local});
   usleep(500'000);
   sh("ip netns exec drone " + bin + "/gpilot-capture --synthetic tour --duration 1 --lcm-url '" + kUrlTtl0 + "' 2> /dev/null");
   usleep(300'000);
-  stop(logger);
-  stop(on_drone);
+  logger.stop(SIGINT);
+  on_drone.stop(SIGINT);
   EXPECT_GT(read_log(local).channels["CAMERA"], 10) << "the drone itself heard nothing: the check proves nothing";
   EXPECT_EQ(read_log(log).channels.size(), 0u) << "ttl=0 traffic reached the ground station";
 }

@@ -12,6 +12,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "bus_node.hpp"
+#include "child_process.hpp"
 #include "clock.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/health_t.hpp"
@@ -24,34 +25,25 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 
-pid_t spawn(std::vector<std::string> args) {
+test::ChildProcess start_capture(std::vector<std::string> args) {
   args.insert(args.begin(), std::string(GPILOT_BIN_DIR) + "/gpilot-capture");
   args.push_back("--lcm-url=" + kUrl);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
+  return test::ChildProcess(std::move(args));
 }
 
 // Serves node until the process exits (or 30 s pass); returns its exit status (-1 on timeout).
-int serve_until_exit(BusNode& node, pid_t pid, const std::function<void()>& each = {}) {
+int serve_until_exit(BusNode& node, test::ChildProcess capture, const std::function<void()>& each = {}) {
   const int64_t end = monotonic_utime() + 30'000'000;
-  int status = 0;
   while (monotonic_utime() < end) {
     node.spin_once(10);
     if (each) each();
-    if (waitpid(pid, &status, WNOHANG) == pid) {
+    if (!capture.running()) {
       for (int i = 0; i < 20; ++i) node.spin_once(10);  // the last messages
+      const int status = capture.wait();
       return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
   }
-  kill(pid, SIGKILL);
-  waitpid(pid, &status, 0);
+  capture.stop(SIGKILL);
   return -1;
 }
 
@@ -76,8 +68,7 @@ TEST(CaptureLcm, SyntheticWorldInRealTimeWithTruthAndClosedLoop) {
   v.position[2] = -1.5f;
   v.source = vehicle_state_t::SOURCE_SIMULATOR;
   int64_t next_state = 0;
-  const pid_t pid = spawn({"--synthetic", "tour", "--duration", "2"});
-  const int status = serve_until_exit(node, pid, [&] {
+  const int status = serve_until_exit(node, start_capture({"--synthetic", "tour", "--duration", "2"}), [&] {
     if (monotonic_utime() >= next_state) {
       node.publish("VEHICLE_STATE", v);
       next_state = monotonic_utime() + 100'000;
@@ -118,7 +109,7 @@ TEST(CaptureLcm, VideoFileArrivesWhole) {
     EXPECT_EQ(m.utime, m.seq * 40000);  // file time at 25 fps
   });
   // paced at the file's rate so that nothing is lost on the way
-  EXPECT_EQ(serve_until_exit(node, spawn({"--video", path})), 0);
+  EXPECT_EQ(serve_until_exit(node, start_capture({"--video", path})), 0);
   EXPECT_EQ(seqs.size(), 60u);
   fs::remove_all(dir);
 }
@@ -130,7 +121,7 @@ TEST(CaptureLcm, MissingFileExitsOneWithErrorInHealth) {
   node.subscribe<health_t>("HEALTH", [&](const health_t& m, int64_t) {
     if (m.name == "gpilot-capture") state = m.state, detail = m.state_detail;
   });
-  EXPECT_EQ(serve_until_exit(node, spawn({"--video", "/no/such/clip.mp4"})), 1);
+  EXPECT_EQ(serve_until_exit(node, start_capture({"--video", "/no/such/clip.mp4"})), 1);
   EXPECT_EQ(state, health_t::STATE_ERROR);
   EXPECT_NE(detail.find("/no/such/clip.mp4"), std::string::npos) << detail;
 }

@@ -6,10 +6,7 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <functional>
@@ -19,51 +16,21 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus_node.hpp"
+#include "child_process.hpp"
 #include "clock.hpp"
 #include "mavlink/frame.hpp"
 #include "mavlink/messages.hpp"
-
-extern char** environ;
 
 namespace gpilot {
 namespace {
 
 const std::string kBin = GPILOT_BIN_DIR;
 
-// A child process, stopped with SIGTERM (then reaped) when the test ends.
-class Child {
- public:
-  explicit Child(std::vector<std::string> args) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
-  }
-  ~Child() { stop(); }
-  int stop() {
-    if (pid_ <= 0) return -1;
-    kill(pid_, SIGTERM);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return status;
-  }
-  bool running() const { return pid_ > 0; }
-  // Waits for a child that ends by itself; its exit status.
-  int wait() {
-    int status = -1;
-    if (pid_ > 0) waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return status;
-  }
-
- private:
-  pid_t pid_ = -1;
-};
+using test::ChildProcess;
 
 // gpilot-ctl COMMAND, run to its end; true when it exited 0.
 bool ctl(const std::string& command) {
-  return Child({kBin + "/gpilot-ctl", command, "--lcm-url", kDefaultLcmUrl}).wait() == 0;
+  return ChildProcess({kBin + "/gpilot-ctl", command, "--lcm-url", kDefaultLcmUrl}).wait() == 0;
 }
 
 template <class Msg>
@@ -125,8 +92,8 @@ TEST(FlightService, PointingMovesTheSimulatedDroneWestOnlyWhileEngaged) {
   bus.listen("GESTURE_CMD", cmds);
   bus.listen("FLIGHT_SETPOINT", setpoints);
   bus.listen("VEHICLE_STATE", states);
-  Child decide({kBin + "/gpilot-decide", "--lcm-url", kDefaultLcmUrl});
-  Child flight({kBin + "/gpilot-flight", "--lcm-url", kDefaultLcmUrl});
+  ChildProcess decide({kBin + "/gpilot-decide", "--lcm-url", kDefaultLcmUrl});
+  ChildProcess flight({kBin + "/gpilot-flight", "--lcm-url", kDefaultLcmUrl});
   ASSERT_TRUE(decide.running() && flight.running());
   ASSERT_TRUE(bus.wait_for([&] { return has_health(health, "gpilot-decide") && has_health(health, "gpilot-flight"); }, 10));
   ASSERT_TRUE(bus.wait_for([&] { return !setpoints.got.empty() && !states.got.empty(); }, 5));
@@ -262,8 +229,8 @@ TEST(FlightService, MavlinkBackendTalksToAnAutopilotOnLoopback) {
   Inbox<health_t> health;
   bus.listen("VEHICLE_STATE", states);
   bus.listen("HEALTH", health);
-  Child flight({kBin + "/gpilot-flight", "--lcm-url", kDefaultLcmUrl, "--set", "flight.backend=mavlink", "--set",
-                "mavlink.endpoint=udp:127.0.0.1:" + std::to_string(ap.port())});
+  ChildProcess flight({kBin + "/gpilot-flight", "--lcm-url", kDefaultLcmUrl, "--set", "flight.backend=mavlink", "--set",
+                       "mavlink.endpoint=udp:127.0.0.1:" + std::to_string(ap.port())});
   auto run = [&](double seconds, const std::function<void()>& each = {}) {
     const int64_t end = monotonic_utime() + seconds_to_utime(seconds);
     while (monotonic_utime() < end) {

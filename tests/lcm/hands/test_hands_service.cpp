@@ -3,19 +3,14 @@
 // and counted in HEALTH, never paired with another seq; a track made on another frame size is rejected.
 #include <gtest/gtest.h>
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <map>
 #include <set>
 
 #include <opencv2/imgproc.hpp>
 
 #include "bus_node.hpp"
+#include "child_process.hpp"
 #include "image_codec.hpp"
-
-extern char** environ;
 
 using namespace gpilot;
 
@@ -51,33 +46,11 @@ user_track_t track(int64_t seq, int8_t status = user_track_t::STATUS_TRACKING) {
   return t;
 }
 
-class Service {
- public:
-  Service() {
-    const std::string bin = std::string(GPILOT_BIN_DIR) + "/gpilot-hands";
-    std::vector<std::string> args = {bin, "--lcm-url", kUrl, "--set", "hands.match_window=3"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, bin.c_str(), nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
-  }
-  ~Service() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      int status = 0;
-      waitpid(pid_, &status, 0);
-    }
-  }
-  pid_t pid() const { return pid_; }
-
- private:
-  pid_t pid_ = -1;
-};
-
 }  // namespace
 
 TEST(HandsService, PairsBySeqAndCountsTheUnmatched) {
-  Service service;
+  test::ChildProcess service(
+      {std::string(GPILOT_BIN_DIR) + "/gpilot-hands", "--lcm-url", kUrl, "--set", "hands.match_window=3"});
   ASSERT_GT(service.pid(), 0) << "cannot start gpilot-hands";
   BusNode bus("test-hands", kUrl);
   std::map<int64_t, hand_obs_t> obs;

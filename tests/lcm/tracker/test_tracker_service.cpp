@@ -4,48 +4,20 @@
 // USER_TRACK and without advancing the track.
 #include <gtest/gtest.h>
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <map>
 #include <vector>
 
 #include "bus_node.hpp"
+#include "child_process.hpp"
 #include "image_codec.hpp"
 #include "sequence.hpp"
 #include "user_tracker.hpp"
-
-extern char** environ;
 
 using namespace gpilot;
 
 namespace {
 
 const char* kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
-
-class Service {
- public:
-  Service() {
-    const std::string bin = std::string(GPILOT_BIN_DIR) + "/gpilot-tracker";
-    std::vector<std::string> args = {bin, "--lcm-url", kUrl};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, bin.c_str(), nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
-  }
-  ~Service() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      int status = 0;
-      waitpid(pid_, &status, 0);
-    }
-  }
-  pid_t pid() const { return pid_; }
-
- private:
-  pid_t pid_ = -1;
-};
 
 }  // namespace
 
@@ -58,7 +30,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   }
   const cv::Rect2d init(261, 48, 39, 65);
 
-  Service service;
+  test::ChildProcess service({std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl});
   ASSERT_GT(service.pid(), 0) << "cannot start gpilot-tracker";
   BusNode bus("test-tracker", kUrl);
   std::map<int64_t, user_track_t> tracks;
