@@ -72,14 +72,40 @@ Recorded read_log(const std::string& path) {
   return r;
 }
 
+// The services' default bus (GPILOT_LCM_URL is not set in the test's namespace).
+const char* kLcmUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
 int64_t wall_utime() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-// Runs the pipeline on a scenario into dir; returns the log path. kill_stage: SIGKILL it at kill_at_s, and
-// its wall time goes to *killed_at.
+// Waits (up to timeout_s) until FLIGHT_SETPOINT has asked for motion for hold_s without a break: the drone is
+// flying on gestures. Start-up time varies with the machine's load, so a fixed delay does not say this.
+bool wait_until_flying(double hold_s, double timeout_s) {
+  lcm::LCM bus(kLcmUrl);
+  if (!bus.good()) return false;
+  int64_t moving_since = 0;
+  struct Handler {
+    int64_t* since;
+    void on(const lcm::ReceiveBuffer*, const std::string&, const flight_setpoint_t* m) {
+      const bool moving = std::hypot(m->velocity[0], m->velocity[1], m->velocity[2]) > 0.05;
+      if (!moving) *since = 0;
+      else if (!*since) *since = wall_utime();
+    }
+  } handler{&moving_since};
+  bus.subscribe("FLIGHT_SETPOINT", &Handler::on, &handler);
+  const int64_t deadline = wall_utime() + static_cast<int64_t>(timeout_s * 1e6);
+  while (wall_utime() < deadline) {
+    bus.handleTimeout(50);
+    if (moving_since && wall_utime() - moving_since > static_cast<int64_t>(hold_s * 1e6)) return true;
+  }
+  return false;
+}
+
+// Runs the pipeline on a scenario into dir; returns the log path. kill_stage: SIGKILL it once the drone has
+// flown on gestures for a second, and its wall time goes to *killed_at.
 std::string run_pipeline(const std::string& scenario, const std::string& dir, double duration_s,
-                         const std::string& kill_stage = "", double kill_at_s = 0, int64_t* killed_at = nullptr) {
+                         const std::string& kill_stage = "", int64_t* killed_at = nullptr) {
   fs::create_directories(dir);
   const std::string log = dir + "/log.lcmlog";
   const std::string src = GPILOT_SOURCE_DIR;
@@ -92,7 +118,7 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
                              "--var", "mavlink=udp:127.0.0.1:14580", "--var", "log=" + log,
                              "--var", "video_out=" + dir + "/annotated.mp4"});
   if (!kill_stage.empty()) {
-    usleep(static_cast<useconds_t>(kill_at_s * 1e6));
+    EXPECT_TRUE(wait_until_flying(1.0, duration_s / 2)) << "the drone never flew: nothing to interrupt";
     const std::string cmd = "pkill -KILL -x " + kill_stage.substr(0, 15);
     EXPECT_EQ(std::system(cmd.c_str()), 0) << "could not kill " << kill_stage;
     if (killed_at) *killed_at = wall_utime();  // pkill has returned: the stage is dead
@@ -239,8 +265,8 @@ TEST_P(KillE2E, StageKilledMidFlightGivesZeroSetpointAndIsRestarted) {
   const std::string stage = GetParam();
   const std::string dir = fs::temp_directory_path() / ("gpilot-e2e-kill-" + stage + "-" + std::to_string(getpid()));
   int64_t killed_at = 0;
-  // At 8 s into the tour the user points sideways and the drone is flying.
-  const Recorded r = read_log(run_pipeline("tour", dir, 22, stage, 8.0, &killed_at));
+  // Killed while the user points sideways (from 4 s into the tour) and the drone flies that way.
+  const Recorded r = read_log(run_pipeline("tour", dir, 22, stage, &killed_at));
   ASSERT_GT(killed_at, 0);
   const auto& pids = r.health_pids.at(stage);
   const int32_t first = pids.front().second;
