@@ -8,6 +8,7 @@
 
 #include "bus_node.hpp"
 #include "flight_bridge.hpp"
+#include "flight_messages.hpp"
 #include "mavlink/session.hpp"
 #include "mavlink/udp_link.hpp"
 #include "quadrotor_sim.hpp"
@@ -15,86 +16,6 @@
 
 namespace gpilot {
 namespace {
-
-static_assert(reason::kNotEngaged == flight_setpoint_t::REASON_NOT_ENGAGED &&
-                  reason::kStartup == flight_setpoint_t::REASON_STARTUP &&
-                  reason::kStaleCommand == flight_setpoint_t::REASON_STALE_COMMAND &&
-                  reason::kStaleTrack == flight_setpoint_t::REASON_STALE_TRACK &&
-                  reason::kStaleVehicle == flight_setpoint_t::REASON_STALE_VEHICLE &&
-                  reason::kTrackLost == flight_setpoint_t::REASON_TRACK_LOST &&
-                  reason::kInvalidInput == flight_setpoint_t::REASON_INVALID_INPUT &&
-                  reason::kCommandDelay == flight_setpoint_t::REASON_COMMAND_DELAY &&
-                  reason::kClipped == flight_setpoint_t::REASON_CLIPPED &&
-                  reason::kLanding == flight_setpoint_t::REASON_LANDING &&
-                  reason::kHeightLimit == flight_setpoint_t::REASON_HEIGHT_LIMIT,
-              "reason bits and flight_setpoint_t::REASON_* must agree");
-static_assert(static_cast<int>(VehicleState::Landed::Landing) == vehicle_state_t::LANDED_LANDING &&
-                  static_cast<int>(VehicleState::Landed::InAir) == vehicle_state_t::LANDED_IN_AIR,
-              "VehicleState::Landed and vehicle_state_t::LANDED_* must agree");
-
-GestureCommand to_core(const gesture_cmd_t& m) {
-  GestureCommand c;
-  c.utime = m.utime;
-  c.seq = m.seq;
-  c.track_id = m.track_id;
-  c.mode = static_cast<GestureMode>(m.mode);
-  for (int i = 0; i < 3; ++i) c.direction[i] = m.direction[i];
-  c.user_box_width = m.user_box_width;
-  return c;
-}
-
-UserTrack to_core(const user_track_t& m) {
-  UserTrack t;
-  t.utime = m.utime;
-  t.tracking = m.status == user_track_t::STATUS_TRACKING;
-  for (int i = 0; i < 4; ++i) t.box[i] = m.box[i];
-  t.track_id = m.track_id;
-  t.image_width = m.image_width;
-  return t;
-}
-
-VehicleState to_core(const vehicle_state_t& m) {
-  VehicleState v;
-  v.utime = m.utime;
-  v.seq = m.seq;
-  for (int i = 0; i < 3; ++i) {
-    v.position[i] = m.position[i];
-    v.velocity[i] = m.velocity[i];
-    v.attitude[i] = m.attitude[i];
-  }
-  v.yaw_rate = m.yaw_rate;
-  v.armed = m.armed;
-  v.landed = static_cast<VehicleState::Landed>(m.landed_state);
-  return v;
-}
-
-vehicle_state_t to_message(const VehicleState& v, int8_t source) {
-  vehicle_state_t m{};
-  m.utime = v.utime;
-  m.seq = v.seq;
-  for (int i = 0; i < 3; ++i) {
-    m.position[i] = static_cast<float>(v.position[i]);
-    m.velocity[i] = static_cast<float>(v.velocity[i]);
-    m.attitude[i] = static_cast<float>(v.attitude[i]);
-  }
-  m.yaw_rate = static_cast<float>(v.yaw_rate);
-  m.armed = v.armed;
-  m.source = source;
-  m.landed_state = static_cast<int8_t>(v.landed);
-  return m;
-}
-
-flight_setpoint_t to_message(const Setpoint& s) {
-  flight_setpoint_t m{};
-  m.utime = s.utime;
-  m.seq = s.seq;
-  for (int i = 0; i < 3; ++i) m.velocity[i] = static_cast<float>(s.velocity[i]);
-  m.yaw_rate = static_cast<float>(s.yaw_rate);
-  m.engaged = s.engaged;
-  m.mode = s.mode;
-  m.reasons = s.reasons;
-  return m;
-}
 
 // The flight service: holds the latest inputs, ticks the bridge, drives the chosen backend.
 class FlightService {
@@ -150,42 +71,33 @@ class FlightService {
 
  private:
   void control(const flight_control_t& m) {
-    // gpilot-ctl repeats each request against multicast loss: act on it once.
-    if (m.utime == last_control_utime_ && m.seq == last_control_seq_ && m.source == last_control_source_) return;
-    last_control_utime_ = m.utime;
-    last_control_seq_ = m.seq;
-    last_control_source_ = m.source;
-    switch (m.command) {
-      case flight_control_t::COMMAND_ENGAGE:
-        in_.engaged = true;
-        in_.landing = false;
-        setpoints_since_engage_ = 0;
-        break;
-      case flight_control_t::COMMAND_DISENGAGE: in_.engaged = false; break;
-      case flight_control_t::COMMAND_LAND:
-        in_.engaged = false;
-        in_.landing = true;
+    std::string why;
+    const OperatorRequest r = to_core(m);
+    if (operator_.repeat(r)) return;
+    const VehicleAction action = operator_.apply(r, in_, &why);
+    if (!why.empty()) {
+      node_.reject(why);
+      return;
+    }
+    if (m.command == flight_control_t::COMMAND_ENGAGE) setpoints_since_engage_ = 0;
+    switch (action) {
+      case VehicleAction::Land:
         if (sim_) sim_->land();
         if (session_) link_->send(session_->land());
         break;
-      case flight_control_t::COMMAND_ARM:
+      case VehicleAction::Arm:
         if (sim_) sim_->arm();
         if (session_) link_->send(session_->arm(true));
         break;
-      case flight_control_t::COMMAND_DISARM:
+      case VehicleAction::Disarm:
         if (sim_) sim_->disarm();
         if (session_) link_->send(session_->arm(false));
         break;
-      case flight_control_t::COMMAND_TAKEOFF:
-        if (!(m.takeoff_altitude > 0.0f)) {
-          node_.reject("FLIGHT_CONTROL: TAKEOFF needs a positive takeoff_altitude");
-          return;
-        }
-        in_.landing = false;
+      case VehicleAction::Takeoff:
         if (sim_) sim_->takeoff(m.takeoff_altitude);
         if (session_) link_->send(session_->takeoff(m.takeoff_altitude));
         break;
-      default: break;
+      case VehicleAction::None: break;
     }
     node_.set_state(health_t::STATE_OK, "backend " + fp_.backend + (in_.engaged ? ", ENGAGED" : ", not engaged") +
                                             (in_.landing ? ", landing" : "") + " (last request from " + m.source + ")");
@@ -246,10 +158,8 @@ class FlightService {
   std::optional<QuadrotorSim> sim_;
   std::unique_ptr<mavlink::UdpLink> link_;
   std::optional<mavlink::MavlinkSession> session_;
+  OperatorState operator_;
   int setpoints_since_engage_ = 0;
-  int64_t last_control_utime_ = -1;
-  int64_t last_control_seq_ = -1;
-  std::string last_control_source_;
 };
 
 }  // namespace

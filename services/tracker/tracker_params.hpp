@@ -80,6 +80,9 @@ struct TrackerParams {
   // when they disagree by more than face_recheck_tolerance (scale or shift, fraction of the box width).
   int face_recheck_frames = 25;        //!< 0: never (the paper)
   double face_recheck_tolerance = 0.05;
+  // A track started from the face whose face has not been found at this many re-checks in a row (out of
+  // view: the drone flew too low, too high, too close) is LOST: the box is no longer known to hold the user.
+  int face_recheck_misses = 3;         //!< 0: never LOST for this (manual tracks never are)
 
   template <class V>
   void visit(V& v) {
@@ -92,6 +95,7 @@ struct TrackerParams {
     v("lost_frames", lost_frames, 1, 1000, "consecutive bad frames before the track is LOST");
     v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
+    v("face_recheck_misses", face_recheck_misses, 0, 1000, "face not found at this many re-checks in a row: LOST (0: never)");
   }
 };
 

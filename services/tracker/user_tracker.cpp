@@ -37,28 +37,30 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   if (new_track) ++out_.track_id;
   bad_frames_ = 0;
   frames_since_face_ = 0;
+  if (new_track) face_misses_ = 0;
 }
 
 // Looks for the face where the box puts it (the box's top, a face-and-a-half around) and, when the body box
 // of that face and the tracked box disagree, restarts the filter on the face's box (same track).
-void UserTracker::recheck_face(const cv::Mat& frame) {
+bool UserTracker::recheck_face(const cv::Mat& frame) {
   frames_since_face_ = 0;
   const cv::Rect2d& b = out_.box;
   const double fw = b.width / p_.body_width_in_faces, fh = b.height / p_.body_height_in_faces;
   const double face_top = b.y + p_.body_top_in_faces * fh;
   const cv::Rect roi(cv::Rect2d(b.x + b.width / 2 - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
   const auto face = faces_.detect(frame, roi);
-  if (!face) return;
+  if (!face) return false;
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view.
   const cv::Rect2d body = body_from_face(face->face, p_);
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
-  if (centre.x < 0 || centre.y < 0 || centre.x >= frame.cols || centre.y >= frame.rows) return;
+  if (centre.x < 0 || centre.y < 0 || centre.x >= frame.cols || centre.y >= frame.rows) return true;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
-  if (scale > std::log(2.0)) return;  // not this user's face
+  if (scale > std::log(2.0)) return false;  // not this user's face
   if (scale > std::log1p(p_.face_recheck_tolerance) ||
       std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width)
     start(frame, body, out_.init, false);
+  return true;
 }
 
 void UserTracker::search(const cv::Mat& frame) {
@@ -97,7 +99,13 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     bad_frames_ = 0;
     last_good_box_ = e.box;
     dsst_.learn(frame);
-    if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) recheck_face(frame);
+    if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) {
+      face_misses_ = recheck_face(frame) ? 0 : face_misses_ + 1;
+      if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses) {
+        out_.status = TrackStatus::kLost;  // searched again from the next frame
+        face_misses_ = 0;
+      }
+    }
   } else if (++bad_frames_ >= p_.lost_frames) {
     // LOST reports the last box seen with good confidence; the search starts with the next frame.
     out_.status = TrackStatus::kLost;

@@ -47,7 +47,8 @@ class UserTracker {
  private:
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
   void search(const cv::Mat& frame);
-  void recheck_face(const cv::Mat& frame);
+  // false when the face was not found where the box puts it
+  bool recheck_face(const cv::Mat& frame);
 
   TrackerParams p_;
   FaceDetector faces_;
@@ -58,6 +59,7 @@ class UserTracker {
   cv::Size frame_size_;
   int bad_frames_ = 0;
   int frames_since_face_ = 0;
+  int face_misses_ = 0;
 };
 
 }  // namespace gpilot

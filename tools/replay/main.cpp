@@ -13,6 +13,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "decide/decide_service.hpp"
+#include "flight_replay.hpp"
 #include "hands/hands_service.hpp"
 #include "service_cli.hpp"
 #include "tracker/tracker_service.hpp"
@@ -30,6 +31,8 @@ const std::map<std::string, StageEntry>& stages() {
       {"tracker", {start_tracker_service, {"CAMERA", "TRACKER_INIT"}, {"USER_TRACK"}}},
       {"hands", {start_hands_service, {"CAMERA", "USER_TRACK"}, {"HAND_OBS"}}},
       {"decide", {start_decide_service, {"HAND_OBS"}, {"GESTURE_CMD"}}},
+      // Started apart (it needs the log's clock): see FlightReplay.
+      {"flight", {nullptr, {"GESTURE_CMD", "USER_TRACK", "VEHICLE_STATE", "FLIGHT_CONTROL"}, {"FLIGHT_SETPOINT"}}},
   };
   return table;
 }
@@ -57,12 +60,14 @@ int main(int argc, char** argv) {
                  "Run a stage's code over an LCM log, faster than real time; write a log with the original inputs and\n"
                  "the new outputs; with --check, print where the new outputs differ from the recorded ones.\n"
                  "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
-                 "decide (HAND_OBS -> GESTURE_CMD), or a chain such as tracker,hands,decide.");
+                 "decide (HAND_OBS -> GESTURE_CMD), flight (GESTURE_CMD, USER_TRACK, VEHICLE_STATE, FLIGHT_CONTROL ->\n"
+                 "FLIGHT_SETPOINT: the bridge's decisions at each recorded setpoint's time; the vehicle's states come\n"
+                 "from the log), or a chain such as tracker,hands,decide.");
   std::string in_path, out_path, stage_arg;
   bool check = false, inputs_only = false;
   double from_s = 0, to_s = 0;
   cli.app().add_option("log", in_path, "the recorded LCM log")->required();
-  cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide")->required();
+  cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide, flight")->required();
   cli.app().add_option("--out", out_path, "write the new log here");
   cli.app().add_flag("--check", check, "compare the new outputs with the recorded ones (exit 1 on any difference)");
   cli.app().add_option("--from", from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
@@ -72,7 +77,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> chain;
     std::stringstream ss(stage_arg);
     for (std::string s; std::getline(ss, s, ',');) {
-      if (!stages().count(s)) throw std::invalid_argument("unknown stage '" + s + "' (tracker, hands, decide)");
+      if (!stages().count(s)) throw std::invalid_argument("unknown stage '" + s + "' (tracker, hands, decide, flight)");
       chain.push_back(s);
     }
     std::set<std::string> outputs, inputs;
@@ -102,10 +107,14 @@ int main(int argc, char** argv) {
     };
 
     BusNode node("gpilot-replay", "memq://");
-    std::vector<std::shared_ptr<void>> running;
-    for (const auto& s : chain) running.push_back(stages().at(s).start(config, node));
-    std::map<std::string, std::vector<std::vector<uint8_t>>> produced, recorded;
     int64_t now_ts = 0;
+    std::vector<std::shared_ptr<void>> running;
+    std::unique_ptr<FlightReplay> flight;
+    for (const auto& s : chain) {
+      if (s == "flight") flight = std::make_unique<FlightReplay>(config, node, now_ts);
+      else running.push_back(stages().at(s).start(config, node));
+    }
+    std::map<std::string, std::vector<std::vector<uint8_t>>> produced, recorded;
     for (const auto& o : outputs)
       node.subscribe_raw(o, [&](const std::string& ch, const void* data, size_t size, int64_t) {
         const auto* p = static_cast<const uint8_t*>(data);
@@ -124,6 +133,10 @@ int main(int argc, char** argv) {
       const auto* p = static_cast<const uint8_t*>(ev->data);
       if (outputs.count(ev->channel)) {
         recorded[ev->channel].emplace_back(p, p + ev->datalen);
+        if (flight && ev->channel == "FLIGHT_SETPOINT") {
+          flight->on_recorded_setpoint(ev->data, static_cast<size_t>(ev->datalen));
+          node.drain();
+        }
         continue;
       }
       if (ev->channel == "HEALTH") continue;  // the live processes' health is not part of a replay

@@ -1,6 +1,7 @@
 // The tracker on the synthetic world's `tour` (every gesture of the paper in turn, 60 s at 25 fps, arms
 // stretched out of the body box and back): found by the face search on the first frames, then the box stays
 // on the person throughout, never LOST.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -75,6 +76,36 @@ TEST(TrackerTour, FaceRecheckKeepsTheScaleWhileTheDroneBacksOffAndClosesIn) {
   std::printf("worst box scale error: %.1f %% with the face re-check, %.1f %% without\n", 100 * with, 100 * without);
   EXPECT_LT(with, 0.32);
   EXPECT_GT(without, 2 * with);
+}
+
+// The drone comes down to 0.3 m, 1.5 m from the user: their face leaves the top of the view. The box still
+// finds texture to follow, so DSST alone keeps TRACKING; with the face re-check the track is LOST once the
+// face has been missed at face_recheck_misses re-checks (3 s), so the drone hovers.
+int frames_until_lost(int face_recheck_misses) {
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::load("idle"), 1);
+  TrackerParams tp;
+  tp.face_recheck_misses = face_recheck_misses;
+  UserTracker tracker(tp);
+  const int descend_from = 50, descend_frames = 50, frames = 300;
+  for (int i = 0; i < frames; ++i) {
+    const double k = std::clamp((i - descend_from) / double(descend_frames), 0.0, 1.0);
+    const CameraPose pose{1.5 * k, 0.0, -1.5 + 1.2 * k, 0.0};
+    const TrackOutput out = tracker.process(world.render(i / sp.fps, i, pose).bgr);
+    if (i == descend_from) {
+      EXPECT_EQ(out.status, TrackStatus::kTracking) << "not tracking before the descent";
+    }
+    if (i > descend_from && out.status != TrackStatus::kTracking) return i - (descend_from + descend_frames);
+  }
+  return -1;
+}
+
+TEST(TrackerTour, FaceOutOfViewForThreeRechecksIsLost) {
+  const int lost_after = frames_until_lost(TrackerParams{}.face_recheck_misses);
+  std::printf("lost %d frames after the descent ended (DSST alone: %d)\n", lost_after, frames_until_lost(0));
+  EXPECT_GE(lost_after, 0) << "still TRACKING with the face out of view";
+  EXPECT_LE(lost_after, 4 * 25);
+  EXPECT_EQ(frames_until_lost(0), -1) << "DSST alone was expected to hold on";
 }
 
 }  // namespace
