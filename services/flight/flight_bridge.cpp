@@ -152,6 +152,21 @@ Setpoint FlightBridge::update(const BridgeInputs& in) {
       sp.reasons |= reason::kHeightLimit;
     }
   }
+  const UserTrack& t = *in.track;
+  if (params_.keep_face_in_view && t.image_height > 0) {
+    const double face_top = t.box[1], face_bottom = t.box[1] + params_.face_band_ratio * t.box[3];
+    bool held = false;
+    if (face_top <= 0.0 && (sp.velocity[2] > 0 || sp.velocity[0] > 0)) {  // at the top: no descent, no closer
+      sp.velocity[2] = std::min(sp.velocity[2], 0.0);
+      sp.velocity[0] = std::min(sp.velocity[0], 0.0);
+      held = true;
+    }
+    if (face_bottom >= t.image_height && sp.velocity[2] < 0) {  // at the bottom: no climb
+      sp.velocity[2] = 0.0;
+      held = true;
+    }
+    if (held) sp.reasons |= reason::kViewLimit;
+  }
   sp.yaw_rate = yaw_rate_for(params_, *in.track);
   if (std::fabs(sp.yaw_rate) > params_.max_yaw_rate) {
     sp.yaw_rate = std::copysign(params_.max_yaw_rate, sp.yaw_rate);

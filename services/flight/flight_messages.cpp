@@ -13,7 +13,8 @@ static_assert(reason::kNotEngaged == flight_setpoint_t::REASON_NOT_ENGAGED &&
                   reason::kCommandDelay == flight_setpoint_t::REASON_COMMAND_DELAY &&
                   reason::kClipped == flight_setpoint_t::REASON_CLIPPED &&
                   reason::kLanding == flight_setpoint_t::REASON_LANDING &&
-                  reason::kHeightLimit == flight_setpoint_t::REASON_HEIGHT_LIMIT,
+                  reason::kHeightLimit == flight_setpoint_t::REASON_HEIGHT_LIMIT &&
+                  reason::kViewLimit == flight_setpoint_t::REASON_VIEW_LIMIT,
               "reason bits and flight_setpoint_t::REASON_* must agree");
 static_assert(static_cast<int>(VehicleState::Landed::Landing) == vehicle_state_t::LANDED_LANDING &&
                   static_cast<int>(VehicleState::Landed::InAir) == vehicle_state_t::LANDED_IN_AIR,
@@ -37,6 +38,7 @@ UserTrack to_core(const user_track_t& m) {
   for (int i = 0; i < 4; ++i) t.box[i] = m.box[i];
   t.track_id = m.track_id;
   t.image_width = m.image_width;
+  t.image_height = m.image_height;
   return t;
 }
 

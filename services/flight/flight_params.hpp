@@ -26,6 +26,11 @@ struct FlightParams {
   // descent below. Without a top, a user who keeps an arm up flies the drone until they are out of view.
   double min_height_m = 0.5;
   double max_height_m = 10.0;
+  // The camera is fixed to the drone: descending or closing in moves the user's face up and out of the image,
+  // climbing moves it down and out; the tracker then follows a body it can no longer check. Those motions
+  // are held at zero while the face band (the top face_band_ratio of the user box) touches that edge.
+  bool keep_face_in_view = true;
+  double face_band_ratio = 0.15;
 
   template <class V>
   void visit(V& v) {
@@ -46,6 +51,8 @@ struct FlightParams {
     v("require_vehicle_state", require_vehicle_state, "hover unless a fresh vehicle state has been received");
     v("min_height_m", min_height_m, 0.0, 1000.0, "no descent below this height above the origin, m");
     v("max_height_m", max_height_m, 0.0, 1000.0, "no climb above this height above the origin, m");
+    v("keep_face_in_view", keep_face_in_view, "no descent/closer with the face at the image top, no climb with it at the bottom");
+    v("face_band_ratio", face_band_ratio, 0.0, 1.0, "top fraction of the user box taken as the face band");
   }
 };
 

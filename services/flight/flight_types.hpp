@@ -11,6 +11,7 @@ struct UserTrack {
   double box[4] = {0.0, 0.0, 0.0, 0.0};  //!< x, y, width, height, px
   int32_t track_id = 0;
   int32_t image_width = 0;             //!< px
+  int32_t image_height = 0;            //!< px (0: unknown, the view rules are not applied)
 };
 
 struct VehicleState {
@@ -38,6 +39,7 @@ constexpr int32_t kCommandDelay = 128;
 constexpr int32_t kClipped = 256;
 constexpr int32_t kLanding = 512;
 constexpr int32_t kHeightLimit = 1024;
+constexpr int32_t kViewLimit = 2048;
 }  // namespace reason
 
 struct Setpoint {

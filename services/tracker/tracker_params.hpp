@@ -80,8 +80,10 @@ struct TrackerParams {
   // when they disagree by more than face_recheck_tolerance (scale or shift, fraction of the box width).
   int face_recheck_frames = 25;        //!< 0: never (the paper)
   double face_recheck_tolerance = 0.05;
-  // A track started from the face whose face has not been found at this many re-checks in a row (out of
-  // view: the drone flew too low, too high, too close) is LOST: the box is no longer known to hold the user.
+  // A track started from the face whose face has not been found at this many re-checks in a row, where the
+  // box puts it well inside the image, is LOST: the box is no longer known to hold the user (it slid onto the
+  // background, or the user turned away). At the image's edge a miss does not count (flight keeps the face
+  // in view: flight.keep_face_in_view).
   int face_recheck_misses = 3;         //!< 0: never LOST for this (manual tracks never are)
 
   template <class V>

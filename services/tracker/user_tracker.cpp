@@ -42,25 +42,26 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
 
 // Looks for the face where the box puts it (the box's top, a face-and-a-half around) and, when the body box
 // of that face and the tracked box disagree, restarts the filter on the face's box (same track).
-bool UserTracker::recheck_face(const cv::Mat& frame) {
+UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   frames_since_face_ = 0;
   const cv::Rect2d& b = out_.box;
   const double fw = b.width / p_.body_width_in_faces, fh = b.height / p_.body_height_in_faces;
   const double face_top = b.y + p_.body_top_in_faces * fh;
   const cv::Rect roi(cv::Rect2d(b.x + b.width / 2 - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
+  const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   const auto face = faces_.detect(frame, roi);
-  if (!face) return false;
+  if (!face) return in_view ? FaceCheck::Missed : FaceCheck::OutOfView;
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view.
   const cv::Rect2d body = body_from_face(face->face, p_);
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
-  if (centre.x < 0 || centre.y < 0 || centre.x >= frame.cols || centre.y >= frame.rows) return true;
+  if (centre.x < 0 || centre.y < 0 || centre.x >= frame.cols || centre.y >= frame.rows) return FaceCheck::Found;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
-  if (scale > std::log(2.0)) return false;  // not this user's face
+  if (scale > std::log(2.0)) return FaceCheck::Missed;  // not this user's face
   if (scale > std::log1p(p_.face_recheck_tolerance) ||
       std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width)
     start(frame, body, out_.init, false);
-  return true;
+  return FaceCheck::Found;
 }
 
 void UserTracker::search(const cv::Mat& frame) {
@@ -100,7 +101,10 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     last_good_box_ = e.box;
     dsst_.learn(frame);
     if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) {
-      face_misses_ = recheck_face(frame) ? 0 : face_misses_ + 1;
+      // A face the window cannot fully see (at the image's edge) is neither found nor missed.
+      const FaceCheck check = recheck_face(frame);
+      if (check == FaceCheck::Found) face_misses_ = 0;
+      if (check == FaceCheck::Missed) ++face_misses_;
       if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses) {
         out_.status = TrackStatus::kLost;  // searched again from the next frame
         face_misses_ = 0;

@@ -47,8 +47,8 @@ class UserTracker {
  private:
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
   void search(const cv::Mat& frame);
-  // false when the face was not found where the box puts it
-  bool recheck_face(const cv::Mat& frame);
+  enum class FaceCheck { Found, Missed, OutOfView };
+  FaceCheck recheck_face(const cv::Mat& frame);
 
   TrackerParams p_;
   FaceDetector faces_;

@@ -39,6 +39,7 @@ UserTrack centred_track() {
   t.box[3] = 250;
   t.track_id = 7;
   t.image_width = 640;
+  t.image_height = 480;
   return t;
 }
 
@@ -109,6 +110,38 @@ TEST(FlightBridge, NoClimbAboveTheHeightBandNoDescentBelowIt) {
     EXPECT_DOUBLE_EQ(sp.velocity[2], k.vz) << "at " << k.height << " m";
     EXPECT_EQ(sp.reasons, k.reasons) << "at " << k.height << " m";
   }
+}
+
+TEST(FlightBridge, MotionsThatTakeTheFaceOutOfViewAreHeld) {
+  FlightParams p;
+  GestureCommand down = fine(0.0, 0.4), up = fine(0.0, -0.4), side_down = fine(-0.5, 0.4);
+  down.mode = GestureMode::Down;
+  up.mode = GestureMode::Up;
+  const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
+  struct Case { const char* what; GestureCommand c; double box_y; double vx, vy, vz; bool held; };
+  // Box height 250: the face band is its top 37.5 px.
+  for (const Case& k : {Case{"descend, face in view", down, 10, 0, 0, 0.4, false},
+                        Case{"descend, face at the top", down, 0, 0, 0, 0.0, true},
+                        Case{"closer, face at the top", closer, -5, 0, 0, 0.0, true},
+                        Case{"further, face at the top", further, -5, -0.5, 0, 0.0, false},
+                        Case{"climb, face at the top", up, -5, 0, 0, -0.4, false},
+                        Case{"sideways and down, face at the top", side_down, -5, 0, -0.5, 0.0, true},
+                        Case{"climb, face at the bottom", up, 480 - 37.5, 0, 0, 0.0, true},
+                        Case{"climb, face just above the bottom", up, 480 - 38.5, 0, 0, -0.4, false}}) {
+    FlightBridge b{p};
+    BridgeInputs in = ready(k.c);
+    in.track->box[1] = k.box_y;
+    const Setpoint sp = b.update(in);
+    EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
+    EXPECT_DOUBLE_EQ(sp.velocity[1], k.vy) << k.what;
+    EXPECT_DOUBLE_EQ(sp.velocity[2], k.vz) << k.what;
+    EXPECT_EQ((sp.reasons & reason::kViewLimit) != 0, k.held) << k.what;
+  }
+  p.keep_face_in_view = false;
+  FlightBridge b{p};
+  BridgeInputs in = ready(down);
+  in.track->box[1] = -20;
+  EXPECT_DOUBLE_EQ(b.update(in).velocity[2], 0.4) << "keep_face_in_view off";
 }
 
 TEST(FlightBridge, SpeedIsClippedToTheLimitsAndSaysSo) {
