@@ -1,15 +1,15 @@
 // The flight stage in a replay: the bridge (the same FlightBridge and OperatorState as gpilot-flight) fed the
 // logged GESTURE_CMD, USER_TRACK, VEHICLE_STATE and FLIGHT_CONTROL with their log times as receipt times, and
-// asked for a setpoint at each recorded FLIGHT_SETPOINT's own time, from the inputs that had arrived by then
-// (the logger may write an input before a setpoint the bridge computed just before that input reached it).
-// The vehicle is not simulated again: its states come from the log, so this replays the decisions (zeroing,
+// asked for a setpoint at each recorded FLIGHT_SETPOINT's own time, from the command and track that setpoint
+// says it saw, with the arrival times it says they had (the logger may write an input before a setpoint the
+// bridge computed just before that input reached it, and its clock reads a millisecond apart). Vehicle states come from the flight process itself, so their
+// order in the log is the bridge's. The vehicle is not simulated again: this replays the decisions (zeroing,
 // spacing, limits, yaw), not the flight.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <deque>
-#include <functional>
 
 #include "bus_node.hpp"
 #include "config.hpp"
@@ -31,9 +31,9 @@ class FlightReplay {
   FlightBridge bridge_;
   OperatorState operator_;
   BridgeInputs in_;
-  std::deque<std::pair<int64_t, std::function<void()>>> pending_;  // inputs by log time, not yet applied
-
-  void later(std::function<void()> apply) { pending_.emplace_back(now_ts_, std::move(apply)); }
+  // Commands and tracks in log order, with their log times, not yet given to the bridge.
+  std::deque<std::pair<int64_t, GestureCommand>> commands_;
+  std::deque<std::pair<int64_t, UserTrack>> tracks_;
 };
 
 }  // namespace gpilot
