@@ -26,6 +26,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "child_process.hpp"
+#include "gpilot/flight_control_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/health_t.hpp"
@@ -102,6 +103,27 @@ bool wait_until_flying(double hold_s, double timeout_s) {
   return false;
 }
 
+// Once HEALTH comes from gpilot-flight again (a new process), sends FLIGHT_CONTROL engage three times.
+bool engage_when_flight_is_back(double timeout_s) {
+  lcm::LCM bus(kLcmUrl);
+  if (!bus.good()) return false;
+  bool back = false;
+  struct Handler {
+    bool* back;
+    void on(const lcm::ReceiveBuffer*, const std::string&, const health_t* m) { *back = *back || m->name == "gpilot-flight"; }
+  } handler{&back};
+  bus.subscribe("HEALTH", &Handler::on, &handler);
+  const int64_t deadline = wall_utime() + static_cast<int64_t>(timeout_s * 1e6);
+  while (!back && wall_utime() < deadline) bus.handleTimeout(50);
+  if (!back) return false;
+  flight_control_t fc{};
+  fc.utime = wall_utime();
+  fc.command = flight_control_t::COMMAND_ENGAGE;
+  fc.source = "test_pipeline_e2e";
+  for (int i = 0; i < 3; ++i, usleep(200'000)) bus.publish("FLIGHT_CONTROL", &fc);
+  return true;
+}
+
 // Runs the pipeline on a scenario into dir; returns the log path. kill_stage: SIGKILL it once the drone has
 // flown on gestures for a second, and its wall time goes to *killed_at.
 std::string run_pipeline(const std::string& scenario, const std::string& dir, double duration_s,
@@ -122,6 +144,10 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
     const std::string cmd = "pkill -KILL -x " + kill_stage.substr(0, 15);
     EXPECT_EQ(std::system(cmd.c_str()), 0) << "could not kill " << kill_stage;
     if (killed_at) *killed_at = wall_utime();  // pkill has returned: the stage is dead
+    // A restarted flight stage comes up disengaged: the operator engages again (as gpilot-ctl would).
+    if (kill_stage == "gpilot-flight") {
+      EXPECT_TRUE(engage_when_flight_is_back(10.0)) << "gpilot-flight never came back";
+    }
   }
   const int status = launch.wait();
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "gpilot-launch failed on " << scenario;
@@ -292,7 +318,8 @@ TEST_P(KillE2E, StageKilledMidFlightGivesZeroSetpointAndIsRestarted) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stages, KillE2E,
-                         ::testing::Values("gpilot-capture", "gpilot-tracker", "gpilot-hands", "gpilot-decide"),
+                         ::testing::Values("gpilot-capture", "gpilot-tracker", "gpilot-hands", "gpilot-decide",
+                                           "gpilot-flight"),
                          [](const auto& info) { return info.param.substr(7); });
 
 }  // namespace
