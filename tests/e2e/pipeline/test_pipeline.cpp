@@ -103,19 +103,30 @@ bool wait_until_flying(double hold_s, double timeout_s) {
   return false;
 }
 
-// Once HEALTH comes from gpilot-flight again (a new process), sends FLIGHT_CONTROL engage three times.
-bool engage_when_flight_is_back(double timeout_s) {
+// The operator's part after gpilot-flight was killed at killed_at: once HEALTH comes from gpilot-flight again
+// (a new process) and it has published zero setpoints for a while (it came up disengaged), and no earlier than
+// 0.5 s after the kill (a person does not re-engage within the 0.3 s the test judges), sends FLIGHT_CONTROL engage
+// three times. Engaging the moment HEALTH appears raced the judged setpoint when the restart was quick.
+bool engage_when_flight_is_back(int64_t killed_at, double timeout_s) {
   lcm::LCM bus(kLcmUrl);
   if (!bus.good()) return false;
-  bool back = false;
   struct Handler {
-    bool* back;
-    void on(const lcm::ReceiveBuffer*, const std::string&, const health_t* m) { *back = *back || m->name == "gpilot-flight"; }
-  } handler{&back};
-  bus.subscribe("HEALTH", &Handler::on, &handler);
+    bool back = false;
+    int zero_setpoints = 0;
+    void on_health(const lcm::ReceiveBuffer*, const std::string&, const health_t* m) {
+      back = back || m->name == "gpilot-flight";
+    }
+    void on_setpoint(const lcm::ReceiveBuffer*, const std::string&, const flight_setpoint_t* m) {
+      if (!back) return;
+      if (std::hypot(m->velocity[0], m->velocity[1], m->velocity[2]) == 0.0) ++zero_setpoints;
+    }
+  } handler;
+  bus.subscribe("HEALTH", &Handler::on_health, &handler);
+  bus.subscribe("FLIGHT_SETPOINT", &Handler::on_setpoint, &handler);
   const int64_t deadline = wall_utime() + static_cast<int64_t>(timeout_s * 1e6);
-  while (!back && wall_utime() < deadline) bus.handleTimeout(50);
-  if (!back) return false;
+  auto ready = [&] { return handler.zero_setpoints >= 5 && wall_utime() >= killed_at + 500'000; };
+  while (!ready() && wall_utime() < deadline) bus.handleTimeout(50);
+  if (!ready()) return false;
   flight_control_t fc{};
   fc.utime = wall_utime();
   fc.command = flight_control_t::COMMAND_ENGAGE;
@@ -141,12 +152,15 @@ std::string run_pipeline(const std::string& scenario, const std::string& dir, do
                              "--var", "video_out=" + dir + "/annotated.mp4"});
   if (!kill_stage.empty()) {
     EXPECT_TRUE(wait_until_flying(1.0, duration_s / 2)) << "the drone never flew: nothing to interrupt";
-    const std::string cmd = "pkill -KILL -x " + kill_stage.substr(0, 15);
+    // Only this run's stage, a child of this run's gpilot-launch: ctest -j2 runs other pipelines beside it (in
+    // their own network namespaces, but not their own PID namespaces).
+    const std::string cmd = "pkill -KILL -P " + std::to_string(launch.pid()) + " -x " + kill_stage.substr(0, 15);
     EXPECT_EQ(std::system(cmd.c_str()), 0) << "could not kill " << kill_stage;
-    if (killed_at) *killed_at = wall_utime();  // pkill has returned: the stage is dead
+    const int64_t killed = wall_utime();  // pkill has returned: the stage is dead
+    if (killed_at) *killed_at = killed;
     // A restarted flight stage comes up disengaged: the operator engages again (as gpilot-ctl would).
     if (kill_stage == "gpilot-flight") {
-      EXPECT_TRUE(engage_when_flight_is_back(10.0)) << "gpilot-flight never came back";
+      EXPECT_TRUE(engage_when_flight_is_back(killed, 10.0)) << "gpilot-flight never came back disengaged";
     }
   }
   const int status = launch.wait();
