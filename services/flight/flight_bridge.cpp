@@ -174,6 +174,11 @@ Setpoint FlightBridge::update(const BridgeInputs& in) {
     }
     if (held) sp.reasons |= reason::kViewLimit;
   }
+  if (params_.closest_box_height_ratio > 0 && t.image_height > 0 && sp.velocity[0] > 0 &&
+      t.box[3] >= params_.closest_box_height_ratio * t.image_height) {
+    sp.velocity[0] = 0.0;
+    sp.reasons |= reason::kRangeLimit;
+  }
   sp.yaw_rate = yaw_rate_for(params_, *in.track);
   if (std::fabs(sp.yaw_rate) > params_.max_yaw_rate) {
     sp.yaw_rate = std::copysign(params_.max_yaw_rate, sp.yaw_rate);

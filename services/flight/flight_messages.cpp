@@ -14,7 +14,8 @@ static_assert(reason::kNotEngaged == flight_setpoint_t::REASON_NOT_ENGAGED &&
                   reason::kClipped == flight_setpoint_t::REASON_CLIPPED &&
                   reason::kLanding == flight_setpoint_t::REASON_LANDING &&
                   reason::kHeightLimit == flight_setpoint_t::REASON_HEIGHT_LIMIT &&
-                  reason::kViewLimit == flight_setpoint_t::REASON_VIEW_LIMIT,
+                  reason::kViewLimit == flight_setpoint_t::REASON_VIEW_LIMIT &&
+                  reason::kRangeLimit == flight_setpoint_t::REASON_RANGE_LIMIT,
               "reason bits and flight_setpoint_t::REASON_* must agree");
 static_assert(static_cast<int>(VehicleState::Landed::Landing) == vehicle_state_t::LANDED_LANDING &&
                   static_cast<int>(VehicleState::Landed::InAir) == vehicle_state_t::LANDED_IN_AIR,

@@ -31,6 +31,11 @@ struct FlightParams {
   // are held at zero while the face band (the top face_band_ratio of the user box) touches that edge.
   bool keep_face_in_view = true;
   double face_band_ratio = 0.15;
+  // No closing in while the user box is this many image heights tall (about 2 m from the user with a 47°
+  // vertical field of view). Closer than that the body no longer fits the image, the box's face/neck band
+  // no longer covers the neck, and Alg. 2 takes the neck for a hand in front above the centre: CLOSER again,
+  // a loop that ends in the user. Ours, not the paper's (its users stood further off); 0 turns it off.
+  double closest_box_height_ratio = 0.75;
 
   template <class V>
   void visit(V& v) {
@@ -53,6 +58,8 @@ struct FlightParams {
     v("max_height_m", max_height_m, 0.0, 1000.0, "no climb above this height above the origin, m");
     v("keep_face_in_view", keep_face_in_view, "no descent/closer with the face at the image top, no climb with it at the bottom");
     v("face_band_ratio", face_band_ratio, 0.0, 1.0, "top fraction of the user box taken as the face band");
+    v("closest_box_height_ratio", closest_box_height_ratio, 0.0, 10.0,
+      "no closing in while the user box is this many image heights tall (0: no limit)");
   }
 };
 

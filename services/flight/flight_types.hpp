@@ -40,6 +40,7 @@ constexpr int32_t kClipped = 256;
 constexpr int32_t kLanding = 512;
 constexpr int32_t kHeightLimit = 1024;
 constexpr int32_t kViewLimit = 2048;
+constexpr int32_t kRangeLimit = 4096;
 }  // namespace reason
 
 struct Setpoint {

@@ -144,6 +144,30 @@ TEST(FlightBridge, MotionsThatTakeTheFaceOutOfViewAreHeld) {
   EXPECT_DOUBLE_EQ(b.update(in).velocity[2], 0.4) << "keep_face_in_view off";
 }
 
+TEST(FlightBridge, NoClosingInOnceTheUserFillsTheImage) {
+  FlightParams p;  // closest_box_height_ratio 0.75: a box of 360 px in a 480 px image
+  const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
+  struct Case { const char* what; GestureCommand c; double box_h; double vx; bool held; };
+  for (const Case& k : {Case{"closer, box 359 px", closer, 359, 0.5, false},
+                        Case{"closer, box 360 px", closer, 360, 0.0, true},
+                        Case{"closer, box beyond the image", closer, 900, 0.0, true},
+                        Case{"further, box 600 px", further, 600, -0.5, false}}) {
+    FlightBridge b{p};
+    BridgeInputs in = ready(k.c);
+    in.track->box[1] = 20;  // face band well inside the image: only the range limit can hold it
+    in.track->box[3] = k.box_h;
+    const Setpoint sp = b.update(in);
+    EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
+    EXPECT_EQ((sp.reasons & reason::kRangeLimit) != 0, k.held) << k.what;
+    EXPECT_EQ(sp.reasons & reason::kViewLimit, 0) << k.what;
+  }
+  p.closest_box_height_ratio = 0;
+  FlightBridge b{p};
+  BridgeInputs in = ready(closer);
+  in.track->box[3] = 900;
+  EXPECT_DOUBLE_EQ(b.update(in).velocity[0], 0.5) << "closest_box_height_ratio 0: no limit";
+}
+
 TEST(FlightBridge, SpeedIsClippedToTheLimitsAndSaysSo) {
   FlightBridge b{FlightParams{}};  // max horizontal 1 m/s
   const Setpoint sp = b.update(ready(fine(-2.0, 0.0)));
