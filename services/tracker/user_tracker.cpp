@@ -25,19 +25,35 @@ void UserTracker::reset() {
   bad_frames_ = 0;
 }
 
+// DSST follows the part of the body box inside the frame (the window); the body box keeps its place and size
+// relative to the window, so it moves and scales with it. A user close to the drone overflows the image: DSST
+// on the whole box would learn mostly replicated border, and could not start at all once the box's centre
+// is out of the image, which is where a re-check must re-anchor it most.
 void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track) {
-  dsst_.init(frame, box);
+  const cv::Rect2d frame_rect(0, 0, frame.cols, frame.rows);
+  const bool in_view = (box & frame_rect) == box;
+  const cv::Rect2d window = in_view ? box : box & frame_rect;
+  box_in_window_ = in_view ? cv::Rect2d(0, 0, 1, 1)
+                           : cv::Rect2d((box.x - window.x) / window.width, (box.y - window.y) / window.height,
+                                        box.width / window.width, box.height / window.height);
+  dsst_.init(frame, window);
   // The first response, on the frame the filter was learnt from, gives the track's starting confidence.
   const DsstEstimate e = dsst_.track(frame);
   out_.status = TrackStatus::kTracking;
-  out_.box = e.box;
+  out_.box = body_box(e.box);
   out_.confidence = e.psr;
   out_.init = source;
-  last_good_box_ = e.box;
+  last_good_box_ = out_.box;
   if (new_track) ++out_.track_id;
   bad_frames_ = 0;
   frames_since_face_ = 0;
   if (new_track) face_misses_ = 0;
+}
+
+cv::Rect2d UserTracker::body_box(const cv::Rect2d& window) const {
+  const cv::Rect2d& k = box_in_window_;
+  return cv::Rect2d(window.x + k.x * window.width, window.y + k.y * window.height, k.width * window.width,
+                    k.height * window.height);
 }
 
 // Looks for the face where the box puts it (the box's top, a face-and-a-half around) and, when the body box
@@ -54,7 +70,6 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view.
   const cv::Rect2d body = body_from_face(face->face, p_);
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
-  if (centre.x < 0 || centre.y < 0 || centre.x >= frame.cols || centre.y >= frame.rows) return FaceCheck::Found;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
   if (scale > std::log(2.0)) return FaceCheck::Missed;  // not this user's face
@@ -66,8 +81,9 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
 
 void UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
+  // The whole body box, as the re-check makes it: the part in view is what DSST follows.
   if (const auto face = faces_.detect(frame); face && face->body.width >= 2 && face->body.height >= 2)
-    start(frame, face->body, InitSource::kFace);
+    start(frame, body_from_face(face->face, p_), InitSource::kFace);
 }
 
 TrackOutput UserTracker::process(const cv::Mat& frame) {
@@ -94,11 +110,11 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
   }
 
   const DsstEstimate e = dsst_.track(frame);
-  out_.box = e.box;
+  out_.box = body_box(e.box);
   out_.confidence = e.psr;
   if (e.psr >= p_.lost_psr) {
     bad_frames_ = 0;
-    last_good_box_ = e.box;
+    last_good_box_ = out_.box;
     dsst_.learn(frame);
     if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) {
       // A face the window cannot fully see (at the image's edge) is neither found nor missed.

@@ -49,6 +49,7 @@ class UserTracker {
   void search(const cv::Mat& frame);
   enum class FaceCheck { Found, Missed, OutOfView };
   FaceCheck recheck_face(const cv::Mat& frame);
+  cv::Rect2d body_box(const cv::Rect2d& window) const;
 
   TrackerParams p_;
   FaceDetector faces_;
@@ -56,6 +57,7 @@ class UserTracker {
   std::optional<cv::Rect2d> pending_box_;
   TrackOutput out_;
   cv::Rect2d last_good_box_;
+  cv::Rect2d box_in_window_{0, 0, 1, 1};  //!< the body box in units of the DSST window (x, y from its corner)
   cv::Size frame_size_;
   int bad_frames_ = 0;
   int frames_since_face_ = 0;
