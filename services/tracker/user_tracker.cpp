@@ -81,9 +81,8 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
 
 void UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
-  // The whole body box, as the re-check makes it: the part in view is what DSST follows.
-  if (const auto face = faces_.detect(frame); face && face->body.width >= 2 && face->body.height >= 2)
-    start(frame, body_from_face(face->face, p_), InitSource::kFace);
+  // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
+  if (const auto face = faces_.detect(frame)) start(frame, body_from_face(face->face, p_), InitSource::kFace);
 }
 
 TrackOutput UserTracker::process(const cv::Mat& frame) {
