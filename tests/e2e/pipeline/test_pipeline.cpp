@@ -2,8 +2,8 @@
 // private network namespace), then the recorded log is judged against the scenario's ground truth, gesture by
 // gesture as the user made them: the drone moves the way the user points (within 15°), climbs on UP,
 // descends on DOWN, closes in on CLOSER, backs off on FURTHER, drifts < 10 cm at rest; the annotated video is
-// written. And each perception/decision stage killed mid-run in turn: the setpoint is zero within 0.3 s, the
-// stage is restarted, control resumes.
+// written. And each stage killed mid-run in turn: the setpoint is zero within 0.3 s, the stage is restarted,
+// control resumes (after gpilot-flight, once the operator engages again).
 //
 // One ctest entry per scenario and per killed stage (tests/e2e/pipeline/CMakeLists.txt). The run's folder is
 // removed when its test passes and kept (path printed) when it fails. GPILOT_E2E_LOG=FILE judges that log
@@ -47,6 +47,8 @@ struct Recorded {
   std::map<std::string, std::vector<std::pair<int64_t, int32_t>>> health_pids;  // name -> (t, pid)
 };
 
+double speed(const flight_setpoint_t& m) { return std::hypot(m.velocity[0], m.velocity[1], m.velocity[2]); }
+
 // All times are the logger's receive times (wall clock, µs), so they compare across processes.
 Recorded read_log(const std::string& path) {
   Recorded r;
@@ -64,7 +66,7 @@ Recorded read_log(const std::string& path) {
     } else if (ch == "FLIGHT_SETPOINT") {
       flight_setpoint_t m{};
       if (m.decode(ev->data, 0, ev->datalen) > 0)
-        r.setpoints.push_back({ev->timestamp, std::hypot(m.velocity[0], m.velocity[1], m.velocity[2])});
+        r.setpoints.push_back({ev->timestamp, speed(m)});
     } else if (ch == "HEALTH") {
       health_t m{};
       if (m.decode(ev->data, 0, ev->datalen) > 0) r.health_pids[m.name].push_back({ev->timestamp, m.pid});
@@ -89,7 +91,7 @@ bool wait_until_flying(double hold_s, double timeout_s) {
   struct Handler {
     int64_t* since;
     void on(const lcm::ReceiveBuffer*, const std::string&, const flight_setpoint_t* m) {
-      const bool moving = std::hypot(m->velocity[0], m->velocity[1], m->velocity[2]) > 0.05;
+      const bool moving = speed(*m) > 0.05;
       if (!moving) *since = 0;
       else if (!*since) *since = wall_utime();
     }
@@ -118,7 +120,7 @@ bool engage_when_flight_is_back(int64_t killed_at, double timeout_s) {
     }
     void on_setpoint(const lcm::ReceiveBuffer*, const std::string&, const flight_setpoint_t* m) {
       if (!back) return;
-      if (std::hypot(m->velocity[0], m->velocity[1], m->velocity[2]) == 0.0) ++zero_setpoints;
+      if (speed(*m) == 0.0) ++zero_setpoints;
     }
   } handler;
   bus.subscribe("HEALTH", &Handler::on_health, &handler);
