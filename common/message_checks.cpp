@@ -27,6 +27,18 @@ std::string check_box(const char* name, const float* box) {
   return "";
 }
 
+// An optional box: all zero for none, else a box with an area inside a width x height image. The float edges
+// may pass the image's by 0.01 px (a box clipped to the image in double, sent as float).
+std::string check_optional_box_in_image(const char* name, const float* box, int width, int height) {
+  if (box[0] == 0 && box[1] == 0 && box[2] == 0 && box[3] == 0) return "";
+  if (box[2] <= 0 || box[3] <= 0) return std::string(name) + " is neither all zero nor a box with an area";
+  constexpr double kSlack = 0.01;
+  if (box[0] < -kSlack || box[1] < -kSlack || static_cast<double>(box[0]) + box[2] > width + kSlack ||
+      static_cast<double>(box[1]) + box[3] > height + kSlack)
+    return std::string(name) + " is outside the " + std::to_string(width) + "x" + std::to_string(height) + " image";
+  return "";
+}
+
 std::string first(std::initializer_list<std::string> reasons) {
   for (const auto& r : reasons)
     if (!r.empty()) return r;
@@ -68,8 +80,10 @@ std::string check_message(const tracker_init_t& m) {
 std::string check_message(const user_track_t& m) {
   return first({check_enum("status", m.status, user_track_t::STATUS_SEARCHING, user_track_t::STATUS_LOST),
                 check_enum("init_source", m.init_source, user_track_t::INIT_NONE, user_track_t::INIT_MANUAL),
-                Finite()("box", m.box, 4)("confidence", m.confidence).reason, check_box("box", m.box),
-                m.image_width < 0 || m.image_height < 0 ? "negative image size" : ""});
+                Finite()("box", m.box, 4)("confidence", m.confidence)("face_box", m.face_box, 4).reason,
+                check_box("box", m.box), check_box("face_box", m.face_box),
+                m.image_width < 0 || m.image_height < 0 ? "negative image size" : "",
+                check_optional_box_in_image("face_box", m.face_box, m.image_width, m.image_height)});
 }
 
 std::string check_message(const hand_obs_t& m) {

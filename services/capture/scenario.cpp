@@ -68,6 +68,14 @@ class Reader {
     }
   }
 
+  bool boolean(const YAML::Node& n, const std::string& key) const {
+    try {
+      return n.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(key, "true or false");
+    }
+  }
+
   static std::string fmt(double v) {
     std::ostringstream s;
     s << v;
@@ -183,7 +191,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     throw ScenarioError(origin + ": not valid YAML: " + e.what());
   }
   r.only(root, "", {"name", "description", "duration_s", "background", "background_grade", "transition_s", "camera",
-                    "person", "distractor", "keyframes"});
+                    "person", "distractor", "wall", "keyframes"});
   Scenario s;
   s.origin_ = origin;
   if (root["name"]) s.name_ = r.text(root["name"], "name");
@@ -213,7 +221,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
   s.person_.east = s.camera_.east + 3.0 * std::sin(s.camera_.yaw);
   bool facing_given = false;
   if (const YAML::Node p = root["person"]) {
-    r.only(p, "person", {"north", "east", "facing_yaw_deg", "skin_tone", "shirt_bgr", "trousers_bgr"});
+    r.only(p, "person", {"north", "east", "facing_yaw_deg", "skin_tone", "shirt_bgr", "trousers_bgr", "sleeves", "tint_face"});
     r.opt(p, "north", "person", s.person_.north, -1e4, 1e4);
     r.opt(p, "east", "person", s.person_.east, -1e4, 1e4);
     if (const YAML::Node f = p["facing_yaw_deg"]) {
@@ -224,6 +232,12 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     if (p["skin_tone"]) s.person_.skin_tone = r.text(p["skin_tone"], "person.skin_tone");
     if (p["shirt_bgr"]) s.person_.shirt_bgr = r.colour(p["shirt_bgr"], "person.shirt_bgr");
     if (p["trousers_bgr"]) s.person_.trousers_bgr = r.colour(p["trousers_bgr"], "person.trousers_bgr");
+    if (p["sleeves"]) {
+      const std::string v = r.text(p["sleeves"], "person.sleeves");
+      if (v != "short" && v != "long") r.fail("person.sleeves", "short or long, not '" + v + "'");
+      s.person_.long_sleeves = v == "long";
+    }
+    if (p["tint_face"]) s.person_.tint_face = r.boolean(p["tint_face"], "person.tint_face");
   }
   if (!facing_given)
     s.person_.facing_yaw = std::atan2(s.camera_.east - s.person_.east, s.camera_.north - s.person_.north);
@@ -233,6 +247,21 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     r.opt(d, "up", "distractor", s.distractor_.up, -5, 50);
     r.opt(d, "behind", "distractor", s.distractor_.behind, 0.2, 100);
     r.opt(d, "radius", "distractor", s.distractor_.radius, 0.01, 5);
+  }
+
+  if (const YAML::Node w = root["wall"]) {
+    r.only(w, "wall", {"distance_m", "bgr", "texture", "width_m", "height_m", "shading"});
+    s.wall_.present = true;
+    r.opt(w, "distance_m", "wall", s.wall_.distance_m, 0.1, 100);
+    if (w["bgr"]) s.wall_.bgr = r.colour(w["bgr"], "wall.bgr");
+    if (w["texture"]) {
+      s.wall_.texture = r.text(w["texture"], "wall.texture");
+      if (s.wall_.texture != "plaster" && s.wall_.texture != "wood" && s.wall_.texture != "flat")
+        r.fail("wall.texture", "plaster, wood or flat, not '" + s.wall_.texture + "'");
+    }
+    r.opt(w, "width_m", "wall", s.wall_.width_m, 0, 1000);
+    r.opt(w, "height_m", "wall", s.wall_.height_m, 0, 100);
+    r.opt(w, "shading", "wall", s.wall_.shading, 0, 0.8);
   }
 
   const YAML::Node keys = root["keyframes"];
@@ -262,13 +291,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     r.opt(k, "noise_sigma", ctx, state.noise_sigma, 0, 64);
     r.opt(k, "blur_px", ctx, state.blur_px, 0, 64);
     if (const YAML::Node q = k["jpeg_quality"]) state.jpeg_quality = static_cast<int>(r.number(q, ctx + ".jpeg_quality", 0, 100));
-    if (const YAML::Node d = k["distractor"]) {
-      try {
-        state.distractor = d.as<bool>();
-      } catch (const YAML::Exception&) {
-        r.fail(ctx + ".distractor", "true or false");
-      }
-    }
+    if (const YAML::Node d = k["distractor"]) state.distractor = r.boolean(d, ctx + ".distractor");
     kf.state = state;
     s.keyframes_.push_back(kf);
   }

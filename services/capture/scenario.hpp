@@ -12,7 +12,19 @@
 //   camera: {north: 0, east: 0, down: -1.5, yaw_deg: 0}        # fixed pose when no VEHICLE_STATE
 //   person: {north: 3, east: 0, facing_yaw_deg: 180, skin_tone: light,
 //            shirt_bgr: [150, 80, 40], trousers_bgr: [60, 50, 45]}  # facing: default, turns to face the camera
+//   person: {..., sleeves: short, tint_face: false}  # short (default): bare forearms and the end of the upper
+//            # arm; long: shirt down to the wrists, only the hands bare. tint_face: the pasted portrait's face
+//            # recoloured toward the skin tone (per-channel gains, mean face colour -> mean tone colour), so that
+//            # face and hands match; false (default) pastes it as shot (a light face whatever the tone).
 //   distractor: {left: 1.3, up: 1.5, behind: 2.0, radius: 0.12}   # skin-coloured ball, person frame, m
+//   wall: {distance_m: 1.0, bgr: [130, 170, 215], texture: wood, width_m: 0, height_m: 0, shading: 0.25}
+//            # a wall (vertical plane) distance_m behind the person, facing the scenario's camera, in front of
+//            # the background photo: fixed in the world (the closed-loop camera sees it with parallax; the
+//            # person's side steps do not move it). bgr: its mean colour; texture: plaster (mottled, fine
+//            # grain), wood (vertical boards 12.5 cm wide, per-board tone, grain, dark joints) or flat; width_m /
+//            # height_m: 0 = unbounded (it fills the view), else a rectangle centred behind the person, from the
+//            # ground up; shading: how much darker the wall gets away from its light (a lamp up and to the
+//            # person's right, 0 = evenly lit). The texture is procedural, the same for every seed.
 //   keyframes:
 //     - {t: 0, gesture: REST, right_arm: rest, left_arm: rest}
 //     - {t: 4, gesture: OUT, right_arm: out, transition_s: 1.5}
@@ -78,6 +90,18 @@ struct ScenarioPerson {
   std::string skin_tone = "light";
   std::array<int, 3> shirt_bgr{{150, 82, 40}};
   std::array<int, 3> trousers_bgr{{70, 55, 45}};
+  bool long_sleeves = false;       //!< sleeves: long (only the hands bare) or short (the default: bare forearms)
+  bool tint_face = false;          //!< recolour the pasted face toward the skin tone
+};
+
+// A wall behind the person (see the format comment above); absent unless the scenario has `wall`.
+struct ScenarioWall {
+  bool present = false;
+  double distance_m = 1.0;                   //!< behind the person's feet, along the scenario camera's line to them
+  std::array<int, 3> bgr{{130, 170, 215}};   //!< mean colour
+  std::string texture = "plaster";           //!< plaster | wood | flat
+  double width_m = 0.0, height_m = 0.0;      //!< 0 = unbounded
+  double shading = 0.25;                     //!< darkening away from the light, 0..0.8
 };
 
 struct ScenarioDistractor {
@@ -115,6 +139,7 @@ class Scenario {
   const CameraPose& camera() const { return camera_; }
   const ScenarioPerson& person() const { return person_; }
   const ScenarioDistractor& distractor() const { return distractor_; }
+  const ScenarioWall& wall() const { return wall_; }
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
 
   // The state at scenario time t_s (clamped to the script).
@@ -131,6 +156,7 @@ class Scenario {
   CameraPose camera_{0.0, 0.0, -1.5, 0.0};
   ScenarioPerson person_;
   ScenarioDistractor distractor_;
+  ScenarioWall wall_;
   std::vector<Keyframe> keyframes_;
   std::vector<ScenarioState> starts_;  // the state each keyframe's move starts from
 };

@@ -112,6 +112,108 @@ cv::Rect bounds(const std::vector<cv::Point2d>& pts, double margin, const cv::Si
   return r & cv::Rect(cv::Point(0, 0), size);
 }
 
+// The wall's texture: kWallTexel metres a pixel, kWallTexW x kWallTexH pixels (8 m x 4 m), periodic both ways.
+constexpr double kWallTexel = 0.005;
+constexpr int kWallTexW = 1600, kWallTexH = 800;
+constexpr int kWallBoard = 25;  // wood: boards 12.5 cm wide (64 a period)
+// The wall's light: a lamp up and to the image's left of the person, falloff scale kLampSpread metres.
+constexpr double kLampAlong = -0.8, kLampHeight = 2.4, kLampSpread = 1.6;
+
+// A periodic Gaussian blur (the texture tiles): wrap-pad, blur, crop.
+cv::Mat blur_wrapped(const cv::Mat& m, double sx, double sy) {
+  const int px = static_cast<int>(std::ceil(4 * sx)) + 1, py = static_cast<int>(std::ceil(4 * sy)) + 1;
+  cv::Mat padded, blurred;
+  cv::copyMakeBorder(m, padded, py, py, px, px, cv::BORDER_WRAP);
+  cv::GaussianBlur(padded, blurred, cv::Size(2 * px + 1, 2 * py + 1), sx, sy, cv::BORDER_REFLECT);
+  return blurred(cv::Rect(px, py, m.cols, m.rows)).clone();
+}
+
+// Zero-mean, unit-deviation random field (CV_32F) with features of about sx x sy texels, periodic.
+cv::Mat periodic_noise(cv::RNG& rng, double sx, double sy) {
+  cv::Mat n(kWallTexH, kWallTexW, CV_32F);
+  rng.fill(n, cv::RNG::NORMAL, 0.0, 1.0);
+  n = blur_wrapped(n, sx, sy);
+  cv::Scalar mean, dev;
+  cv::meanStdDev(n, mean, dev);
+  n = (n - mean[0]) / std::max(dev[0], 1e-9);
+  return n;
+}
+
+// Smooth, periodic low-frequency field: a few waves of whole cycles across the texture, unit deviation.
+cv::Mat periodic_waves(cv::RNG& rng, int max_kx, int max_ky, int waves) {
+  cv::Mat n(kWallTexH, kWallTexW, CV_32F, cv::Scalar(0));
+  std::vector<std::array<double, 4>> w;  // kx, ky, phase, amplitude
+  for (int i = 0; i < waves; ++i) {
+    const int kx = rng.uniform(0, max_kx + 1), ky = rng.uniform(0, max_ky + 1);
+    if (kx == 0 && ky == 0) continue;
+    w.push_back({double(kx), double(ky), rng.uniform(0.0, 2 * M_PI), 1.0 / std::hypot(kx, 2.0 * ky)});
+  }
+  for (int y = 0; y < n.rows; ++y) {
+    float* row = n.ptr<float>(y);
+    for (int x = 0; x < n.cols; ++x) {
+      double v = 0;
+      for (const auto& a : w) v += a[3] * std::sin(2 * M_PI * (a[0] * x / kWallTexW + a[1] * y / kWallTexH) + a[2]);
+      row[x] = static_cast<float>(v);
+    }
+  }
+  cv::Scalar mean, dev;
+  cv::meanStdDev(n, mean, dev);
+  return (n - mean[0]) / std::max(dev[0], 1e-9);
+}
+
+// The wall's texture at full brightness (shading is applied per frame from the wall coordinates). Fixed
+// random streams: the same wall for every seed.
+cv::Mat make_wall_texture(const ScenarioWall& wall) {
+  const cv::Vec3f base(float(wall.bgr[0]), float(wall.bgr[1]), float(wall.bgr[2]));
+  cv::Mat tex(kWallTexH, kWallTexW, CV_32FC3, cv::Scalar(base[0], base[1], base[2]));
+  if (wall.texture == "plaster") {
+    // Mottling over tens of centimetres (5 %), trowel marks of a few centimetres (3 %), grain (2.5 %), and a
+    // slight warm/cool drift of the hue (1.5 % on red against blue).
+    cv::RNG rng(0x9A57E12ull);
+    const cv::Mat mottle = periodic_waves(rng, 12, 6, 24), trowel = periodic_noise(rng, 6, 4), grain = periodic_noise(rng, 0.8, 0.8);
+    const cv::Mat hue = periodic_waves(rng, 8, 4, 12);
+    for (int y = 0; y < tex.rows; ++y) {
+      cv::Vec3f* t = tex.ptr<cv::Vec3f>(y);
+      for (int x = 0; x < tex.cols; ++x) {
+        const float l = 1.0f + 0.05f * mottle.at<float>(y, x) + 0.03f * trowel.at<float>(y, x) + 0.025f * grain.at<float>(y, x);
+        const float h = 0.015f * hue.at<float>(y, x);
+        t[x] = cv::Vec3f(base[0] * l * (1 - h), base[1] * l, base[2] * l * (1 + h));
+      }
+    }
+  } else if (wall.texture == "wood") {
+    // Vertical boards: each with its own tone and redness, wavy grain lines (darker, more saturated late wood)
+    // 1.5-3 cm apart, long fibres, and a dark joint with a shaded edge between boards.
+    cv::RNG rng(0x3A11B0A7ull);
+    const cv::Mat fibre = periodic_noise(rng, 0.7, 8.0);
+    const int boards = kWallTexW / kWallBoard;
+    struct Board { double tone, red, spacing, phase, wave_amp, wave_len, wave_phase; };
+    std::vector<Board> b(static_cast<size_t>(boards));
+    for (auto& k : b)
+      k = {rng.uniform(0.86, 1.08), rng.uniform(-0.04, 0.04), rng.uniform(3.0, 6.0), rng.uniform(0.0, 1.0),
+           rng.uniform(1.0, 4.0), double(kWallTexH) / rng.uniform(1, 4), rng.uniform(0.0, 2 * M_PI)};
+    const cv::Vec3f late(0.76f, 0.83f, 0.92f);  // late wood: darker, blue and green more than red
+    for (int y = 0; y < tex.rows; ++y) {
+      cv::Vec3f* t = tex.ptr<cv::Vec3f>(y);
+      for (int x = 0; x < tex.cols; ++x) {
+        const Board& k = b[static_cast<size_t>(x / kWallBoard)];
+        const int xl = x % kWallBoard;
+        const double warp = k.wave_amp * std::sin(2 * M_PI * y / k.wave_len + k.wave_phase);
+        const double ring = 0.5 + 0.5 * std::sin(2 * M_PI * ((xl + warp) / k.spacing + k.phase));
+        const float g = static_cast<float>(std::pow(ring, 4.0));
+        const float l = static_cast<float>(k.tone) * (1.0f + 0.03f * fibre.at<float>(y, x));
+        const float joint = xl < 2 ? 0.45f : xl == 2 ? 0.85f : xl == kWallBoard - 1 ? 1.04f : 1.0f;
+        for (int c = 0; c < 3; ++c) {
+          const float red = c == 2 ? 1.0f + static_cast<float>(k.red) : c == 0 ? 1.0f - static_cast<float>(k.red) : 1.0f;
+          t[x][c] = base[c] * l * red * joint * (1.0f - g + g * late[c]);
+        }
+      }
+    }
+  }
+  cv::Mat out;
+  blur_wrapped(tex, 0.6, 0.6).convertTo(out, CV_8UC3);
+  return out;
+}
+
 }  // namespace
 
 // The camera of one frame and the person's frame, with projection between them.
@@ -165,11 +267,23 @@ SyntheticWorld::SyntheticWorld(const SyntheticParams& params, Scenario scenario,
   cv::ellipse(alpha, kHeadOutline, cv::Scalar(255), cv::FILLED, cv::LINE_AA);
   cv::ellipse(face, kFaceOval, cv::Scalar(255), cv::FILLED, cv::LINE_AA);
   cv::GaussianBlur(face, face, cv::Size(9, 9), 0);
+  // Face tint (person.tint_face): per-channel gains that take the face's mean colour to the tone's mean colour,
+  // applied inside the face oval (fading out with it); features and shading are kept.
+  cv::Vec3d tint(1.0, 1.0, 1.0);
+  const std::vector<cv::Vec3b> tones = read_skin_tone(params_.skin_tones, scenario_.person().skin_tone);
+  if (scenario_.person().tint_face) {
+    const cv::Scalar face_mean = cv::mean(crop, face > 200);
+    cv::Vec3d tone_mean(0, 0, 0);
+    for (const auto& t : tones) tone_mean += cv::Vec3d(t[0], t[1], t[2]);
+    tone_mean *= 1.0 / static_cast<double>(tones.size());
+    for (int c = 0; c < 3; ++c) tint[c] = tone_mean[c] / std::max(face_mean[c], 1.0);
+  }
   for (int y = 0; y < crop.rows; ++y)
     for (int x = 0; x < crop.cols; ++x) {
-      const double gain = kHairGain + (1.0 - kHairGain) * face.at<uchar>(y, x) / 255.0;
+      const double w = face.at<uchar>(y, x) / 255.0;
+      const double gain = kHairGain + (1.0 - kHairGain) * w;
       cv::Vec3b& p = crop.at<cv::Vec3b>(y, x);
-      for (int c = 0; c < 3; ++c) p[c] = cv::saturate_cast<uchar>(p[c] * gain);
+      for (int c = 0; c < 3; ++c) p[c] = cv::saturate_cast<uchar>(p[c] * gain * (1.0 + (tint[c] - 1.0) * w));
     }
   std::vector<cv::Mat> channels;
   cv::split(crop, channels);
@@ -185,13 +299,26 @@ SyntheticWorld::SyntheticWorld(const SyntheticParams& params, Scenario scenario,
   head_face_px_ = kFaceInCrop;
 
   // Skin: a frame-sized texture of real skin colours of the person's tone (fixed, independent of the seed).
-  const std::vector<cv::Vec3b> tones = read_skin_tone(params_.skin_tones, scenario_.person().skin_tone);
   cv::Mat tile(64, 64, CV_8UC3);
   cv::RNG tile_rng(0x5EED5C1Eu);
   for (int y = 0; y < tile.rows; ++y)
     for (int x = 0; x < tile.cols; ++x) tile.at<cv::Vec3b>(y, x) = tones[static_cast<size_t>(tile_rng.uniform(0, static_cast<int>(tones.size())))];
   cv::GaussianBlur(tile, tile, cv::Size(3, 3), 0, 0, cv::BORDER_WRAP);
   cv::repeat(tile, (params_.height + 63) / 64, (params_.width + 63) / 64, skin_plane_);
+
+  // Wall: a vertical plane distance_m behind the person, on the scenario camera's line to them, facing it.
+  if (scenario_.wall().present) {
+    const ScenarioWall& w = scenario_.wall();
+    const auto& person = scenario_.person();
+    const CameraPose& cam = scenario_.camera();
+    cv::Vec3d dir(person.north - cam.north, person.east - cam.east, 0.0);
+    if (cv::norm(dir) < 1e-6) dir = cv::Vec3d(std::cos(cam.yaw), std::sin(cam.yaw), 0.0);
+    dir = cv::normalize(dir);
+    wall_centre_ = cv::Vec3d(person.north, person.east, 0.0) + dir * w.distance_m;
+    wall_normal_ = -dir;
+    wall_along_ = cv::Vec3d(-dir[1], dir[0], 0.0);  // to the right as seen from the camera
+    wall_texture_ = make_wall_texture(w);
+  }
 
   // Sensor noise: one bank of unit Gaussian noise (x 64), read at a per-frame offset.
   cv::RNG rng(splitmix64(seed_));
@@ -217,6 +344,53 @@ void SyntheticWorld::draw_background(cv::Mat& img, const View& v) const {
   const double y0 = 0.5 * panorama_.rows + focal_ * (dd / dist - std::tan(v.pitch));
   const cv::Matx23d inv(1.0 / s, 0, x0 - v.cx / s, 0, 1.0 / s, y0 - v.cy / s);
   cv::warpAffine(panorama_, img, inv, img.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
+}
+
+void SyntheticWorld::draw_wall(cv::Mat& img, cv::Mat* labels, const View& v) const {
+  const ScenarioWall& w = scenario_.wall();
+  cv::Mat map_x(img.size(), CV_32F), map_y(img.size(), CV_32F), shade(img.size(), CV_32F);
+  cv::Mat hit(img.size(), CV_8U, cv::Scalar(0));
+  const double c_n = (wall_centre_ - v.c).dot(wall_normal_);  // < 0: the camera is in front of the wall
+  const double two_l2 = 2.0 * kLampSpread * kLampSpread;
+  for (int y = 0; y < img.rows; ++y) {
+    float* mx = map_x.ptr<float>(y);
+    float* my = map_y.ptr<float>(y);
+    float* sh = shade.ptr<float>(y);
+    uchar* h = hit.ptr<uchar>(y);
+    const cv::Vec3d row = v.fwd + v.down * ((y - v.cy) / v.f);
+    for (int x = 0; x < img.cols; ++x) {
+      const cv::Vec3d d = row + v.right * ((x - v.cx) / v.f);
+      const double dn = d.dot(wall_normal_);
+      mx[x] = my[x] = -1.0f;
+      if (std::fabs(dn) < 1e-9) continue;
+      const double t = c_n / dn;
+      if (t <= 0.0) continue;
+      const cv::Vec3d p = v.c + d * t - wall_centre_;
+      const double u = p.dot(wall_along_), height = -p[2];
+      if (w.width_m > 0 && std::fabs(u) > 0.5 * w.width_m) continue;
+      if (w.height_m > 0 && (height < 0 || height > w.height_m)) continue;
+      const double col = u / kWallTexel + 0.5 * kWallTexW, row_px = (4.0 - height) / kWallTexel;
+      mx[x] = static_cast<float>(col - kWallTexW * std::floor(col / kWallTexW));
+      my[x] = static_cast<float>(row_px - kWallTexH * std::floor(row_px / kWallTexH));
+      const double r2 = (u - kLampAlong) * (u - kLampAlong) + (height - kLampHeight) * (height - kLampHeight);
+      sh[x] = static_cast<float>(1.0 - w.shading * (1.0 - std::exp(-r2 / two_l2)));
+      h[x] = 1;
+    }
+  }
+  cv::Mat wall;
+  cv::remap(wall_texture_, wall, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_WRAP);
+  for (int y = 0; y < img.rows; ++y) {
+    const uchar* h = hit.ptr<uchar>(y);
+    const float* sh = shade.ptr<float>(y);
+    const cv::Vec3b* src = wall.ptr<cv::Vec3b>(y);
+    cv::Vec3b* dst = img.ptr<cv::Vec3b>(y);
+    uchar* l = labels ? labels->ptr<uchar>(y) : nullptr;
+    for (int x = 0; x < img.cols; ++x) {
+      if (!h[x]) continue;
+      for (int c = 0; c < 3; ++c) dst[x][c] = cv::saturate_cast<uchar>(src[x][c] * sh[x]);
+      if (l) l[x] = static_cast<uchar>(PartLabel::Wall);
+    }
+  }
 }
 
 void SyntheticWorld::blend_skin(cv::Mat& img, const cv::Mat& alpha, const cv::Rect& roi) const {
@@ -327,6 +501,16 @@ void SyntheticWorld::draw_person(cv::Mat& img, cv::Mat* labels, const View& v, c
     const PartLabel skin_label = right ? PartLabel::RightArmSkin : PartLabel::LeftArmSkin;
     const PartLabel hand_label = right ? PartLabel::RightHand : PartLabel::LeftHand;
 
+    if (person.long_sleeves) {
+      // Long sleeves: the shirt down to the wrist, then only the hand is bare.
+      limb(PartLabel::Sleeve, shirt, arm->shoulder, arm->elbow, d.upper_arm_half * 1.15, d.forearm_half * 1.25);
+      limb(PartLabel::Sleeve, shirt, arm->elbow, arm->wrist, d.forearm_half * 1.25, d.forearm_half * 1.05);
+      alpha.setTo(0);
+      ellipse(alpha, ph, pt - pw, hand_len, hand_w, cv::Scalar(255), cv::LINE_AA);
+      blend_skin(img, alpha, bounds({pw, ph, pt}, hand_len + 2.0, img.size()));
+      if (labels) ellipse(*labels, ph, pt - pw, hand_len, hand_w, cv::Scalar(double(hand_label)), cv::LINE_8);
+      continue;
+    }
     alpha.setTo(0);
     capsule(alpha, ps, pe, r_up * 0.95, r_el, cv::Scalar(255), cv::LINE_AA);
     capsule(alpha, pe, pw, r_el, r_wr, cv::Scalar(255), cv::LINE_AA);
@@ -394,9 +578,12 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   if (labels) labels->create(params_.height, params_.width, CV_8UC1), labels->setTo(0);
   draw_background(out.bgr, v);
 
-  if (s.distractor) {
-    const ScenarioDistractor& dz = scenario_.distractor();
-    const cv::Point3d at(dz.left, dz.up, -dz.behind);
+  const ScenarioDistractor& dz = scenario_.distractor();
+  const cv::Point3d at(dz.left, dz.up, -dz.behind);
+  // The distractor behind the wall's plane is drawn before the wall (hidden where the wall is).
+  const bool wall = !wall_texture_.empty();
+  const bool behind_wall = wall && (v.world(at) - wall_centre_).dot(wall_normal_) < 0.0;
+  const auto draw_distractor = [&] {
     if (v.depth(at) > 0.1) {
       const cv::Point2d c = v.project(at);
       const double r = v.px(dz.radius, at);
@@ -405,7 +592,10 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
       blend_skin(out.bgr, alpha, bounds({c}, r + 2.0, out.bgr.size()));
       if (labels) cv::circle(*labels, fixed(c), static_cast<int>(std::lround(r * kOne)), cv::Scalar(double(PartLabel::Distractor)), cv::FILLED, cv::LINE_8, kShift);
     }
-  }
+  };
+  if (s.distractor && behind_wall) draw_distractor();
+  if (wall) draw_wall(out.bgr, labels, v);
+  if (s.distractor && !behind_wall) draw_distractor();
 
   const FigurePose pose = pose_figure(dims_, s.right_arm, s.left_arm, s.step_m);
   // A person behind the camera (the drone turned away or flew past) is not drawn, and has no boxes.
@@ -434,6 +624,12 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   const cv::Point2d rh = v.project(pose.right.hand), lh = v.project(pose.left.hand);
   t.right_hand = cv::Point2f(float(rh.x), float(rh.y));
   t.left_hand = cv::Point2f(float(lh.x), float(lh.y));
+  const auto pt = [&](const cv::Point3d& p) {
+    const cv::Point2d q = v.project(p);
+    return cv::Point2f(float(q.x), float(q.y));
+  };
+  t.right_elbow = pt(pose.right.elbow), t.left_elbow = pt(pose.left.elbow);
+  t.right_wrist = pt(pose.right.wrist), t.left_wrist = pt(pose.left.wrist);
   t.hand_size = static_cast<float>(1.1 * std::max(v.px(dims_.hand_length, pose.right.hand), v.px(dims_.hand_length, pose.left.hand)));
   const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), rules_);
   t.shoulder_centre = e.shoulder_centre;

@@ -28,6 +28,12 @@
 //   centred there that holds the whole hand.
 // - gesture: the scenario's intended gesture (ground_truth_t::GESTURE_*); during a transition it switches to
 //   the next keyframe's gesture half-way.
+// - left_elbow, right_elbow, left_wrist, right_wrist: projected joints of the arms (for tests and tools; the
+//   LCM message does not carry them).
+//
+// Scene. Back to front: the background photo (graded as the scenario says), the scenario's wall if any (a
+// textured plane in the world, per-pixel ray intersection, labelled Wall), the distractor (behind the wall
+// when it is further than the wall), the person, then the frame-wide nuisances.
 // - expected_kind / expected_vector / expected_mode / expected_direction: the paper's Alg. 1/2/3 applied to the
 //   true hands and the true user box (gesture_truth.hpp lists the simplifications).
 // - a person behind the camera is not drawn; the boxes, points and hand_size are then 0 and the expected
@@ -54,6 +60,7 @@ namespace gpilot {
 struct SyntheticTruth {
   cv::Rect2f user_box, face_box;
   cv::Point2f shoulder_centre, body_centre, left_hand, right_hand;
+  cv::Point2f left_elbow, right_elbow, left_wrist, right_wrist;  //!< projected joints (not in ground_truth_t)
   float hand_size = 0.0f;
   int gesture = 0;             //!< ground_truth_t::GESTURE_*
   int expected_kind = 0;       //!< hand_obs_t::KIND_*
@@ -71,7 +78,7 @@ struct SyntheticFrame {
 
 // Per-pixel part labels (render(..., &labels)): for tests and the contact sheet.
 enum class PartLabel : uint8_t {
-  Background = 0, Distractor, Legs, Torso, Head, RightArmSkin, RightHand, LeftArmSkin, LeftHand, Sleeve
+  Background = 0, Distractor, Legs, Torso, Head, RightArmSkin, RightHand, LeftArmSkin, LeftHand, Sleeve, Wall
 };
 
 class SyntheticWorld {
@@ -92,6 +99,7 @@ class SyntheticWorld {
  private:
   struct View;  // the camera of one frame
   void draw_background(cv::Mat& img, const View& v) const;
+  void draw_wall(cv::Mat& img, cv::Mat* labels, const View& v) const;
   void draw_person(cv::Mat& img, cv::Mat* labels, const View& v, const FigurePose& pose) const;
   void draw_head(cv::Mat& img, cv::Mat* labels, const View& v, double step_x) const;
   void blend_skin(cv::Mat& img, const cv::Mat& alpha, const cv::Rect& roi) const;
@@ -108,6 +116,8 @@ class SyntheticWorld {
   std::vector<cv::Mat> head_levels_;  // BGRA head portrait (hair darkened, elliptical alpha), a pyramid
   cv::Rect2d head_face_px_;   // the Haar face box inside head_levels_[0]
   cv::Mat skin_plane_;        // frame-sized texture of real skin colours
+  cv::Mat wall_texture_;      // CV_8UC3, periodic, kWallTexel metres a pixel (empty: no wall)
+  cv::Vec3d wall_centre_, wall_normal_, wall_along_;  // NED: foot of the wall behind the person, toward the camera, along it
   cv::Mat noise_bank_;        // CV_16SC3, unit Gaussian x 64, larger than a frame
   std::array<double, 4> shake_phase_{};
 };

@@ -44,7 +44,7 @@ HandDetector::HandDetector(const HandsParams& params, SkinClassifier skin) : par
   if (skin_.empty()) throw SkinModelError("hand detector needs a skin classifier");
 }
 
-HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box) {
+HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin) {
   CV_Assert(bgr.type() == CV_8UC3);
   const HandGeometry g = hand_geometry(params_, user_box, bgr.size());
   last_roi_ = g.valid ? g.roi : cv::Rect();
@@ -54,7 +54,7 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box) 
     r.geometry = g;
     return r;
   }
-  skin_.classify(bgr(g.roi), mask_);
+  (skin ? *skin : skin_).classify(bgr(g.roi), mask_);
   if (g.open_radius > 0) {
     const int side = 2 * g.open_radius + 1;
     cv::morphologyEx(mask_, mask_, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
@@ -64,7 +64,28 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box) 
   const cv::Rect bottom(g.box.x, g.legs_rows_begin, g.box.width, std::max(0, g.box.br().y - g.legs_rows_begin));
   for (const cv::Rect& r : {top & g.box, bottom & g.box})
     if (!r.empty()) mask_(r - g.roi.tl()).setTo(0);
-  return run(mask_, g.roi.tl(), g);
+  const int dropped = drop_large_blobs(mask_, g);
+  HandResult res = run(mask_, g.roi.tl(), g);
+  res.blobs_dropped = dropped;
+  return res;
+}
+
+int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g) {
+  if (params_.max_blob_hand_areas <= 0 || mask.empty()) return 0;
+  const double max_area = params_.max_blob_hand_areas * g.hand_side * g.hand_side;
+  const int n = cv::connectedComponentsWithStats(mask, labels_, stats_, centroids_, 8, CV_32S);
+  std::vector<uint8_t> drop(static_cast<size_t>(n), 0);
+  int dropped = 0;
+  for (int i = 1; i < n; ++i)
+    if (stats_.at<int32_t>(i, cv::CC_STAT_AREA) > max_area) drop[static_cast<size_t>(i)] = 1, ++dropped;
+  if (!dropped) return 0;
+  for (int y = 0; y < mask.rows; ++y) {
+    uint8_t* m = mask.ptr<uint8_t>(y);
+    const int32_t* l = labels_.ptr<int32_t>(y);
+    for (int x = 0; x < mask.cols; ++x)
+      if (drop[static_cast<size_t>(l[x])]) m[x] = 0;
+  }
+  return dropped;
 }
 
 HandResult HandDetector::detect_on_mask(const cv::Mat& mask, cv::Point origin, const HandGeometry& geometry) {
@@ -89,6 +110,17 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
   };
   const double l1 = params_.lambda1, l2 = params_.lambda2, l3 = params_.lambda3;
   const double ucx = g.shoulder_centre.x, ucy = g.shoulder_centre.y, bcx = g.body_centre.x;
+  // Alg. 1's candidates: within reach of the nearer shoulder and, below the shoulder line, at least
+  // out_min_angle_deg from straight down seen from it.
+  const double shoulder_dx = params_.shoulder_half_ratio * g.width;
+  const double reach = params_.reach_ratio * g.width, reach2 = reach * reach;
+  const double tan_min = std::tan(params_.out_min_angle_deg * M_PI / 180.0);
+  auto out_candidate = [&](int ix, int iy) {
+    const double sx = ix < ucx ? ucx - shoulder_dx : ucx + shoulder_dx;
+    const double dx = std::abs(ix - sx), dy = iy - ucy;
+    if (params_.reach_ratio > 0 && dx * dx + dy * dy > reach2) return false;
+    return dy <= 0 || params_.out_min_angle_deg <= 0 || dx >= tan_min * dy;
+  };
   double best_out = -std::numeric_limits<double>::infinity(), best_front = best_out;
   cv::Point p_out, p_front;
   int f_out = 0, f_front = 0;
@@ -108,7 +140,7 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
           p_front = {ix, iy};
           f_front = f;
         }
-      } else {
+      } else if (out_candidate(ix, iy)) {
         ++res.skin_outside;
         const double s = std::abs(ucx - ix) + l2 * (ucy - iy) + l1 * f;
         if (s > best_out) {

@@ -6,6 +6,9 @@
 //           |p_uc.x - p.x| + λ2 (p_uc.y - p.y) + λ1 F_skin(p), result p - p_uc (KIND OUT);
 //   Alg. 2 (only if Alg. 1 found nothing): argmax over skin pixels inside the box of
 //           -|p_bc.x - p.x| + λ3 F_skin(p), accepted if |p_bc.x - p.x| < w/5 and F_skin > 30, result p - p_bc.
+// Ours, on top (each a config value, 0 = off): skin components larger than a few hand squares are dropped
+// (walls, wood); Alg. 1 counts only skin within reach of a shoulder and, below the shoulder line, far enough
+// from straight down that a hanging forearm is not a stretched-out arm.
 // Pure: no LCM, no clock. Image axes: x right, y down, pixels.
 #pragma once
 
@@ -47,6 +50,7 @@ struct HandResult {
   int skin_outside = 0;      //!< skin pixels outside the box, inside the search rectangle
   int skin_inside = 0;       //!< skin pixels inside the box after the removals
   int front_candidate_skin = 0;  //!< F_skin of Alg. 2's argmax even when its gates refused it
+  int blobs_dropped = 0;         //!< skin components too large for a hand
 };
 
 class HandDetector {
@@ -54,8 +58,8 @@ class HandDetector {
   // Throws SkinModelError if the classifier is empty.
   HandDetector(const HandsParams& params, SkinClassifier skin);
 
-  // Whole stage for one frame (CV_8UC3 BGR).
-  HandResult detect(const cv::Mat& bgr, const cv::Rect2f& user_box);
+  // Whole stage for one frame (CV_8UC3 BGR), with the detector's own classifier or `skin` (e.g. an adapted one).
+  HandResult detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin = nullptr);
 
   // Alg. 1 then Alg. 2 on a ready skin mask (CV_8UC1, nonzero = skin) whose top-left pixel is image pixel
   // origin. Removals are NOT applied here: the mask is used as given (detect() applies them first).
@@ -68,10 +72,11 @@ class HandDetector {
 
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
+  int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry);
 
   HandsParams params_;
   SkinClassifier skin_;
-  cv::Mat mask_, integral_;
+  cv::Mat mask_, integral_, labels_, stats_, centroids_;
   cv::Rect last_roi_;
 };
 

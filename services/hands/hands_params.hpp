@@ -5,6 +5,46 @@
 
 namespace gpilot {
 
+// The skin model that learns the user and the scene (SkinAdapter): none of these is the paper's (its future work).
+struct SkinAdaptParams {
+  bool enabled = true;               //!< false: the trained table alone (the paper)
+  double user_weight = 0.5;          //!< a: share of this user's skin histogram in P(c|skin); 1 - a stays the table's
+  double user_rate = 0.3;            //!< each new face blends in at this rate
+  double scene_weight = 0.6;         //!< b: share of the scene histogram in P(c|not skin)
+  double scene_rate = 0.1;           //!< each frame's scene sample blends in at this rate (decay)
+  int scene_stride = 4;              //!< the scene is sampled every N-th pixel in x and y
+  double scene_margin = 1.2;         //!< the scene is the frame outside the user box grown by this many box widths
+                                     //!< (a stretched-out hand there is a small share of the scene's colours)
+  // The cheek band of the Haar face box: below the eyes, inside the face outline, above the chin.
+  double face_band_top = 0.5;        //!< band top, fraction of the face box height
+  double face_band_bottom = 0.85;    //!< band bottom, fraction of the face box height
+  double face_band_side = 0.2;       //!< band inset from each side, fraction of the face box width
+  double face_min_prior = 0.3;       //!< face pixels the table gives P(skin) above this are learnt (not eyes, hair)
+  int min_face_samples = 50;         //!< a face with fewer such pixels teaches nothing
+  int min_scene_samples = 200;       //!< a scene sample with fewer pixels teaches nothing
+  int rebuild_frames = 5;            //!< the adapted table is rebuilt at most this often, frames (first state at once)
+  double smoothing_sigma = 1.0;      //!< Gaussian blur of the learnt histograms, bins
+
+  template <class V>
+  void visit(V& v) {
+    v("enabled", enabled, "learn the user's skin (face) and the scene's colours on top of the trained table");
+    v("user_weight", user_weight, 0.0, 1.0, "share of the user's face histogram in P(colour|skin)");
+    v("user_rate", user_rate, 0.0, 1.0, "blend rate of each new face sample");
+    v("scene_weight", scene_weight, 0.0, 1.0, "share of the scene histogram in P(colour|not skin)");
+    v("scene_rate", scene_rate, 0.0, 1.0, "blend rate of each frame's scene sample (decay)");
+    v("scene_stride", scene_stride, 1, 64, "scene sampled every N-th pixel in x and y");
+    v("scene_margin", scene_margin, 0.0, 10.0, "scene = frame outside the user box grown by this many box widths");
+    v("face_band_top", face_band_top, 0.0, 1.0, "cheek band top, fraction of face box height");
+    v("face_band_bottom", face_band_bottom, 0.0, 1.0, "cheek band bottom, fraction of face box height");
+    v("face_band_side", face_band_side, 0.0, 0.5, "cheek band inset each side, fraction of face box width");
+    v("face_min_prior", face_min_prior, 0.0, 1.0, "face pixels with table P(skin) above this are learnt");
+    v("min_face_samples", min_face_samples, 1, 1000000, "a face with fewer learnable pixels is ignored");
+    v("min_scene_samples", min_scene_samples, 1, 1000000, "a scene sample with fewer pixels is ignored");
+    v("rebuild_frames", rebuild_frames, 1, 10000, "rebuild the adapted table at most every N frames");
+    v("smoothing_sigma", smoothing_sigma, 0.0, 8.0, "Gaussian blur of the learnt histograms, bins");
+  }
+};
+
 struct SkinParams {
   std::string model = "data/skin/skin_model.yaml";  //!< trained histogram model (gpilot-skin-train), relative to the project root
   // 0.75, not 0.5: background photographs have many colours the smoothed table puts at P 0.5..0.75 (building.jpg:
@@ -14,12 +54,14 @@ struct SkinParams {
   // the thin edges and specks a textured background leaves, which Alg. 1 would otherwise count outside the box.
   // r = round(open_radius_ratio x user box width): 2 px for an 85 px box, so a hand (w/4 wide) survives it.
   double open_radius_ratio = 0.025;  //!< opening radius / box width (0 = off)
+  SkinAdaptParams adapt;
 
   template <class V>
   void visit(V& v) {
     v("model", model, "skin model file from gpilot-skin-train (relative paths: from the project root)");
     v("threshold", threshold, 0.0, 1.0, "P(skin|colour) above this is skin");
     v("open_radius_ratio", open_radius_ratio, 0.0, 0.25, "skin mask opening radius / box width (0 = off; ours, not the paper's)");
+    v.group("adapt", adapt);
   }
 };
 
@@ -44,6 +86,19 @@ struct HandsParams {
   double front_gate_ratio = 0.2;    //!< Alg. 2 accepts |p_bc.x - p.x| < ratio × w (paper w/5)
   int front_min_skin = 30;          //!< Alg. 2 accepts F_skin above this (paper 30)
   int match_window = 15;            //!< frames/tracks wait this many seqs for their partner, then are dropped
+  // Hands that are hand-shaped and within reach (ours, not the paper's: colour alone finds walls, wood and bare
+  // forearms on real photos; hands README, ablation table). 0 turns each off.
+  double max_blob_hand_areas = 4.0;  //!< a skin component larger than this many hand squares is no hand (a wall,
+                                     //!< a face with neck; a bare arm with its hand is ~3)
+  double shoulder_half_ratio = 0.35; //!< the shoulders sit this many box widths either side of p_uc
+  double reach_ratio = 1.6;          //!< Alg. 1: a hand lies within this many box widths of its shoulder
+  double out_min_angle_deg = 25.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
+                                     //!< from its shoulder) or more: a hanging forearm beside the body is not OUT
+                                     //!< (the paper's DOWN arm points 30 deg from down)
+  // The face the tracker found is the surest reference on real people (a person box may hold stretched-out
+  // arms or end at the image edge): when one is given, the box the stage works on is made from it with the
+  // tracker's head-body ratios (tracker.body_*_in_faces).
+  bool box_from_face = true;
 
   template <class V>
   void visit(V& v) {
@@ -63,6 +118,11 @@ struct HandsParams {
     v("front_gate_ratio", front_gate_ratio, 0.0, 1.0, "Alg. 2: |p_bc.x - p.x| below ratio x box width (paper 1/5)");
     v("front_min_skin", front_min_skin, 0, 1000000, "Alg. 2: F_skin needed, more than (paper 30)");
     v("match_window", match_window, 1, 1000, "CAMERA/USER_TRACK pairing: seqs an unmatched one waits before it is dropped");
+    v("max_blob_hand_areas", max_blob_hand_areas, 0.0, 1000.0, "skin component above this many hand squares is no hand (0 = off; ours)");
+    v("shoulder_half_ratio", shoulder_half_ratio, 0.0, 2.0, "shoulders this many box widths either side of p_uc");
+    v("reach_ratio", reach_ratio, 0.0, 10.0, "Alg. 1: hand within this many box widths of its shoulder (0 = off; ours)");
+    v("out_min_angle_deg", out_min_angle_deg, 0.0, 90.0, "Alg. 1: hand below the shoulders this far from straight down at least (0 = off; ours)");
+    v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }
 };
 

@@ -10,11 +10,12 @@
 
 #include "bus_node.hpp"
 #include "hands/hands_service.hpp"
-#include "hands/hand_detector.hpp"
+#include "hands/hand_observer.hpp"
 #include "hands/hands_params.hpp"
 #include "hands/seq_pairer.hpp"
 #include "image_codec.hpp"
 #include "paths.hpp"
+#include "tracker/tracker_params.hpp"
 
 namespace gpilot {
 
@@ -27,7 +28,7 @@ void copy_rect(float* out, const cv::Rect& r) {
   out[3] = static_cast<float>(r.height);
 }
 
-hand_obs_t observe(HandDetector& detector, const image_t& frame, const user_track_t& track, const cv::Mat& bgr) {
+hand_obs_t observe(HandObserver& observer, const image_t& frame, const user_track_t& track, const cv::Mat& bgr) {
   hand_obs_t obs{};
   obs.utime = frame.utime;
   obs.seq = frame.seq;
@@ -37,12 +38,20 @@ hand_obs_t observe(HandDetector& detector, const image_t& frame, const user_trac
   obs.image_width = bgr.cols;
   obs.image_height = bgr.rows;
   obs.kind = hand_obs_t::KIND_NONE;
-  const cv::Rect2f box(track.box[0], track.box[1], track.box[2], track.box[3]);
+  UserView user;
+  user.box = cv::Rect2f(track.box[0], track.box[1], track.box[2], track.box[3]);
+  if (track.face_box[2] > 0 && track.face_box[3] > 0)
+    user.face = cv::Rect2f(track.face_box[0], track.face_box[1], track.face_box[2], track.face_box[3]);
+  user.track_id = track.track_id;
   HandResult r;
   if (track.status == user_track_t::STATUS_TRACKING)
-    r = detector.detect(bgr, box);
+    r = observer.observe(bgr, user);
   else
-    r.geometry = hand_geometry(detector.params(), box, bgr.size());
+    r.geometry = hand_geometry(observer.params(), user.box, bgr.size());
+  const SkinAdaptation a = observer.adaptation();
+  obs.skin_user_samples = a.user_samples;
+  obs.skin_scene_samples = a.scene_samples;
+  obs.skin_changed = static_cast<float>(a.changed_fraction);
   obs.shoulder_centre[0] = r.geometry.shoulder_centre.x;
   obs.shoulder_centre[1] = r.geometry.shoulder_centre.y;
   obs.body_centre[0] = r.geometry.body_centre.x;
@@ -62,21 +71,21 @@ hand_obs_t observe(HandDetector& detector, const image_t& frame, const user_trac
 
 std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   struct State {
-    State(const HandsParams& p, const std::string& model)
-        : detector(p, SkinClassifier(SkinModel::load(model), p.skin.threshold)), pairer(p.match_window) {}
-    HandDetector detector;
+    State(const HandsParams& p, const std::string& model, const BodyProportions& body)
+        : observer(p, SkinModel::load(model), body), pairer(p.match_window) {}
+    HandObserver observer;
     SeqPairer<image_t, user_track_t> pairer;
     int64_t frames_dropped = 0, tracks_dropped = 0;
   };
   const auto params = config.section<HandsParams>("hands");
   const std::string model_path = resolve_project_path(params.skin.model);
-  auto state = std::make_shared<State>(params, model_path);
-  auto& detector = state->detector;
+  auto state = std::make_shared<State>(params, model_path, config.section<TrackerParams>("tracker").body());
+  auto& observer = state->observer;
   auto& pairer = state->pairer;
   auto& frames_dropped = state->frames_dropped;
   auto& tracks_dropped = state->tracks_dropped;
 
-  auto handle = [&node, &detector, &pairer, &frames_dropped, &tracks_dropped, model_path](std::optional<std::pair<image_t, user_track_t>> pair) {
+  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, model_path](std::optional<std::pair<image_t, user_track_t>> pair) {
     for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
       node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
     for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
@@ -91,7 +100,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
       return node.reject("USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) +
                          "x" + std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
                          std::to_string(bgr.rows));
-    node.publish("HAND_OBS", observe(detector, frame, track, bgr));
+    node.publish("HAND_OBS", observe(observer, frame, track, bgr));
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
   };
   node.subscribe<image_t>("CAMERA", [handle, &pairer](const image_t& m, int64_t) { handle(pairer.add_frame(m.seq, m)); });

@@ -1,5 +1,6 @@
 #include "skin_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -41,7 +42,9 @@ std::vector<double> blur_axis(const std::vector<double>& in, int bins, int axis,
   return out;
 }
 
-std::vector<double> smooth(std::vector<double> v, int bins, double sigma) {
+}  // namespace
+
+std::vector<double> smooth_histogram(std::vector<double> v, int bins, double sigma) {
   if (sigma <= 0) return v;
   const int radius = static_cast<int>(std::ceil(3 * sigma));
   std::vector<double> kernel(static_cast<size_t>(2 * radius + 1));
@@ -50,6 +53,50 @@ std::vector<double> smooth(std::vector<double> v, int bins, double sigma) {
   for (auto& k : kernel) k /= sum;
   for (int axis = 0; axis < 3; ++axis) v = blur_axis(v, bins, axis, kernel);
   return v;
+}
+
+namespace {
+
+// Likelihoods are stored as -log2(P) in 1/8 bit steps, one byte a bin: 255 stands for P <= 2^-31.9.
+constexpr double kLogSteps = 8.0;
+
+uint8_t encode_likelihood(double p) {
+  if (p <= 0) return 255;
+  return static_cast<uint8_t>(std::clamp(std::lround(-std::log2(p) * kLogSteps), 0L, 255L));
+}
+
+float decode_likelihood(uint8_t q) { return static_cast<float>(std::exp2(-q / kLogSteps)); }
+
+std::string to_hex(const std::vector<uint8_t>& bytes) {
+  static const char* hex = "0123456789abcdef";
+  std::string text;
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    text += hex[bytes[i] >> 4];
+    text += hex[bytes[i] & 15];
+    if ((i + 1) % 64 == 0) text += '\n';
+  }
+  return text;
+}
+
+std::vector<uint8_t> from_hex(const std::string& text, const std::string& what) {
+  std::vector<uint8_t> out;
+  out.reserve(text.size() / 2);
+  int hi = -1;
+  for (char c : text) {
+    int d;
+    if (c >= '0' && c <= '9') d = c - '0';
+    else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
+    else if (c == '\n' || c == ' ' || c == '\r') continue;
+    else throw SkinModelError(what + " has a character that is not a hex digit");
+    if (hi < 0) {
+      hi = d;
+    } else {
+      out.push_back(static_cast<uint8_t>(hi * 16 + d));
+      hi = -1;
+    }
+  }
+  if (hi >= 0) throw SkinModelError(what + " has an odd number of hex digits");
+  return out;
 }
 
 void fill_index(int bins, std::array<int32_t, 256>& qb, std::array<int32_t, 256>& qg, std::array<int32_t, 256>& qr) {
@@ -73,8 +120,8 @@ SkinModel SkinModel::train(const SkinHistogram& hist, const SkinTrainOptions& op
   if (hist.skin_total() <= 0 || hist.non_skin_total() <= 0)
     throw SkinModelError("training needs both skin and non-skin pixels");
   const int bins = hist.bins();
-  const std::vector<double> s = smooth(hist.skin_counts(), bins, options.smoothing_sigma);
-  const std::vector<double> n = smooth(hist.non_skin_counts(), bins, options.smoothing_sigma);
+  const std::vector<double> s = smooth_histogram(hist.skin_counts(), bins, options.smoothing_sigma);
+  const std::vector<double> n = smooth_histogram(hist.non_skin_counts(), bins, options.smoothing_sigma);
   SkinModel m;
   m.bins_ = bins;
   m.description_ = trim_end(options.description);
@@ -83,6 +130,19 @@ SkinModel SkinModel::train(const SkinHistogram& hist, const SkinTrainOptions& op
     const double total = s[i] + n[i];
     const double p = total > 1e-12 ? s[i] / total : 0.0;
     m.table_[i] = static_cast<uint8_t>(std::lround(p * 255.0));
+  }
+  double s_total = 0, n_total = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    s_total += s[i];
+    n_total += n[i];
+  }
+  m.skin_prior_ = s_total / (s_total + n_total);
+  // Stored rounded (as in the file), so a trained model and the same model loaded back are the same.
+  m.skin_likelihood_.resize(s.size());
+  m.non_likelihood_.resize(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    m.skin_likelihood_[i] = decode_likelihood(encode_likelihood(s[i] / s_total));
+    m.non_likelihood_[i] = decode_likelihood(encode_likelihood(n[i] / n_total));
   }
   m.build_index();
   return m;
@@ -97,14 +157,18 @@ void SkinModel::save(const std::string& path) const {
   e << YAML::BeginMap << YAML::Key << "format" << YAML::Value << kFormat;
   e << YAML::Key << "bins" << YAML::Value << bins_;
   e << YAML::Key << "description" << YAML::Value << YAML::Literal << description_;
-  static const char* hex = "0123456789abcdef";
-  std::string text;
-  for (size_t i = 0; i < table_.size(); ++i) {
-    text += hex[table_[i] >> 4];
-    text += hex[table_[i] & 15];
-    if ((i + 1) % 64 == 0) text += '\n';
+  e << YAML::Key << "table_hex" << YAML::Value << YAML::Literal << to_hex(table_);
+  if (has_likelihoods()) {
+    auto encode = [](const std::vector<float>& l) {
+      std::vector<uint8_t> q(l.size());
+      for (size_t i = 0; i < l.size(); ++i) q[i] = encode_likelihood(l[i]);
+      return q;
+    };
+    e << YAML::Key << "skin_prior" << YAML::Value << skin_prior_;
+    e << YAML::Key << "skin_likelihood_hex" << YAML::Value << YAML::Literal << to_hex(encode(skin_likelihood_));
+    e << YAML::Key << "non_likelihood_hex" << YAML::Value << YAML::Literal << to_hex(encode(non_likelihood_));
   }
-  e << YAML::Key << "table_hex" << YAML::Value << YAML::Literal << text << YAML::EndMap;
+  e << YAML::EndMap;
   f << "# gesture-pilot skin model: P(skin | B,G,R) x 255 per histogram bin, index (b*bins + g)*bins + r.\n"
     << "# Written by gpilot-skin-train; read by gpilot-hands (hands.skin.model).\n"
     << e.c_str() << "\n";
@@ -127,25 +191,21 @@ SkinModel SkinModel::load(const std::string& path) {
     m.bins_ = root["bins"].as<int>();
     if (log2_exact(m.bins_) < 1) throw SkinModelError(path + ": bins must be a power of two from 2 to 256");
     if (root["description"]) m.description_ = trim_end(root["description"].as<std::string>());
-    const std::string text = root["table_hex"].as<std::string>();
     const size_t n = static_cast<size_t>(m.bins_) * m.bins_ * m.bins_;
-    m.table_.reserve(n);
-    int hi = -1;
-    for (char c : text) {
-      int d;
-      if (c >= '0' && c <= '9') d = c - '0';
-      else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
-      else if (c == '\n' || c == ' ' || c == '\r') continue;
-      else throw SkinModelError(path + ": table_hex has a character that is not a hex digit");
-      if (hi < 0) {
-        hi = d;
-      } else {
-        m.table_.push_back(static_cast<uint8_t>(hi * 16 + d));
-        hi = -1;
+    m.table_ = from_hex(root["table_hex"].as<std::string>(), path + ": table_hex");
+    if (m.table_.size() != n)
+      throw SkinModelError(path + ": table has " + std::to_string(m.table_.size()) + " entries, bins^3 = " + std::to_string(n));
+    if (root["skin_likelihood_hex"] || root["non_likelihood_hex"]) {
+      m.skin_prior_ = root["skin_prior"].as<double>();
+      if (!(m.skin_prior_ > 0 && m.skin_prior_ < 1)) throw SkinModelError(path + ": skin_prior must be in (0, 1)");
+      for (auto [key, out] : {std::pair{"skin_likelihood_hex", &m.skin_likelihood_}, std::pair{"non_likelihood_hex", &m.non_likelihood_}}) {
+        const auto q = from_hex(root[key].as<std::string>(), path + ": " + key);
+        if (q.size() != n)
+          throw SkinModelError(path + ": " + key + " has " + std::to_string(q.size()) + " entries, bins^3 = " + std::to_string(n));
+        out->resize(n);
+        for (size_t i = 0; i < n; ++i) (*out)[i] = decode_likelihood(q[i]);
       }
     }
-    if (m.table_.size() != n || hi >= 0)
-      throw SkinModelError(path + ": table has " + std::to_string(m.table_.size()) + " entries, bins^3 = " + std::to_string(n));
     m.build_index();
     return m;
   } catch (const YAML::Exception& ex) {
@@ -174,6 +234,14 @@ SkinClassifier::SkinClassifier(const SkinModel& model, double threshold) {
   for (size_t i = 0; i < mask_table_.size(); ++i) mask_table_[i] = model.table()[i] > t ? 1 : 0;
   fill_index(model.bins(), qb_, qg_, qr_);
   bits_ = log2_exact(model.bins());
+  shift_ = 8 - bits_;
+}
+
+SkinClassifier::SkinClassifier(int bins, std::vector<uint8_t> mask_table) : mask_table_(std::move(mask_table)) {
+  if (log2_exact(bins) < 1) throw SkinModelError("bins per channel must be a power of two from 2 to 256");
+  if (mask_table_.size() != static_cast<size_t>(bins) * bins * bins) throw SkinModelError("skin table size is not bins^3");
+  fill_index(bins, qb_, qg_, qr_);
+  bits_ = log2_exact(bins);
   shift_ = 8 - bits_;
 }
 

@@ -17,6 +17,9 @@ class SkinModelError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A 3-D Gaussian blur (sigma in bins, truncated at 3 sigma, zero outside) of a bins^3 histogram, b-major.
+std::vector<double> smooth_histogram(std::vector<double> v, int bins, double sigma);
+
 // Counts of skin and non-skin colours, the raw material of a SkinModel.
 class SkinHistogram {
  public:
@@ -54,7 +57,9 @@ class SkinModel {
   // counts, i.e. smoothed skin count / (smoothed skin + smoothed non-skin count); 0 where both are empty.
   static SkinModel train(const SkinHistogram& hist, const SkinTrainOptions& options);
 
-  // YAML file: bins, description, and the table as hex (2 digits a bin, b-major then g then r).
+  // YAML file: bins, description, the table as hex (2 digits a bin, b-major then g then r), and the two class
+  // likelihoods P(c|skin), P(c|not) as -log2 in 1/8 bit steps (2 hex digits a bin) with the skin prior, which
+  // the adaptive model (SkinAdapter) needs. A file without them still loads (has_likelihoods() false).
   void save(const std::string& path) const;
   static SkinModel load(const std::string& path);  // throws SkinModelError with the reason
 
@@ -63,6 +68,13 @@ class SkinModel {
   const std::string& description() const { return description_; }
   const std::vector<uint8_t>& table() const { return table_; }
 
+  bool has_likelihoods() const { return !skin_likelihood_.empty(); }
+  const std::vector<float>& skin_likelihood() const { return skin_likelihood_; }  //!< P(c | skin), sums to ~1
+  const std::vector<float>& non_likelihood() const { return non_likelihood_; }    //!< P(c | not skin), sums to ~1
+  double skin_prior() const { return skin_prior_; }                               //!< P(skin) of the training counts
+
+  // The table index of one colour.
+  int bin(uint8_t b, uint8_t g, uint8_t r) const { return qb_[b] + qg_[g] + qr_[r]; }
   // P(skin) x 255 of one colour.
   uint8_t level(uint8_t b, uint8_t g, uint8_t r) const {
     return table_[static_cast<size_t>(qb_[b] + qg_[g] + qr_[r])];
@@ -79,6 +91,8 @@ class SkinModel {
   int bins_ = 0;
   std::string description_;
   std::vector<uint8_t> table_;
+  std::vector<float> skin_likelihood_, non_likelihood_;
+  double skin_prior_ = 0;
   std::array<int32_t, 256> qb_{}, qg_{}, qr_{};  // per-channel parts of the table index
 };
 
@@ -87,6 +101,8 @@ class SkinClassifier {
  public:
   SkinClassifier() = default;
   SkinClassifier(const SkinModel& model, double threshold);
+  // From a ready 0/1 table of bins^3 entries (b-major), e.g. an adapted model's.
+  SkinClassifier(int bins, std::vector<uint8_t> mask_table);
 
   bool empty() const { return mask_table_.empty(); }
   bool is_skin(uint8_t b, uint8_t g, uint8_t r) const {
@@ -94,6 +110,7 @@ class SkinClassifier {
   }
   // mask (CV_8UC1, same size as bgr): 1 = skin, 0 = not, for the pixels of bgr (CV_8UC3).
   void classify(const cv::Mat& bgr, cv::Mat& mask) const;
+  const std::vector<uint8_t>& mask_table() const { return mask_table_; }
 
  private:
   std::vector<uint8_t> mask_table_;

@@ -12,12 +12,7 @@
 
 namespace gpilot {
 
-cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) {
-  const double w = face.width * p.body_width_in_faces;
-  const double h = face.height * p.body_height_in_faces;
-  const double cx = face.x + face.width / 2;
-  return cv::Rect2d(cx - w / 2, face.y - p.body_top_in_faces * face.height, w, h);
-}
+cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) { return body_from_face(face, p.body()); }
 
 FaceDetector::FaceDetector(const TrackerParams& params) : p_(params) {
   const std::string path = resolve_project_path(p_.face.cascade);

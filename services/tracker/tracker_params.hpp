@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "body_proportions.hpp"
+
 namespace gpilot {
 
 struct FaceDetectorParams {
@@ -70,6 +72,7 @@ struct TrackerParams {
   double body_width_in_faces = 2.75;   //!< body box width / face box width
   double body_height_in_faces = 7.0;   //!< body box height / face box height
   double body_top_in_faces = 0.25;     //!< body box top sits this many face heights above the face box top
+  BodyProportions body() const { return {body_width_in_faces, body_height_in_faces, body_top_in_faces}; }
   // Bolme et al. (MOSSE, CVPR 2010): PSR is 20..60 while tracking and drops below 7 on failure. Measured
   // here: min 12.6 over OTB Crossing, 36 over cf_tracking_sample; 4..6 after a cut to another scene.
   double lost_psr = 7.0;               //!< PSR below this counts as a bad frame (and is not learnt)

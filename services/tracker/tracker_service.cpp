@@ -1,7 +1,8 @@
 // The tracker stage on a bus, used by gpilot-tracker (live LCM) and gpilot-replay (a log through memq://).
 // Reads CAMERA (image_t) and TRACKER_INIT (tracker_init_t); writes USER_TRACK (user_track_t, one per
-// accepted frame, with that frame's seq and utime) and HEALTH. A frame that does not decode or that the
-// tracker cannot use is rejected (counted in HEALTH) and does not advance the track.
+// accepted frame, with that frame's seq and utime, and the face box on the frames where the cascade found it)
+// and HEALTH. A frame that does not decode or that the tracker cannot use is rejected (counted in HEALTH) and
+// does not advance the track.
 #include <cstdio>
 #include <stdexcept>
 
@@ -26,6 +27,12 @@ gpilot::user_track_t to_message(const gpilot::TrackOutput& t, const gpilot::imag
   m.box[2] = static_cast<float>(t.box.width);
   m.box[3] = static_cast<float>(t.box.height);
   m.confidence = static_cast<float>(t.confidence);
+  if (t.face) {  // else all zero: not looked for or not found in this frame
+    m.face_box[0] = static_cast<float>(t.face->x);
+    m.face_box[1] = static_cast<float>(t.face->y);
+    m.face_box[2] = static_cast<float>(t.face->width);
+    m.face_box[3] = static_cast<float>(t.face->height);
+  }
   m.init_source = static_cast<int8_t>(t.init);
   m.track_id = t.track_id;
   m.image_width = frame.width;

@@ -22,6 +22,7 @@ void UserTracker::reset() {
   out_.box = cv::Rect2d();
   out_.confidence = 0.0;
   out_.init = InitSource::kNone;
+  out_.face.reset();
   bad_frames_ = 0;
 }
 
@@ -50,6 +51,12 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   if (new_track) face_misses_ = 0;
 }
 
+// The face as published: clipped to the frame (a downscaled search can put its edge up to a pixel outside).
+void UserTracker::found_face(const cv::Mat& frame, const cv::Rect2d& face) {
+  const cv::Rect2d in_frame = face & cv::Rect2d(0, 0, frame.cols, frame.rows);
+  if (in_frame.width > 0 && in_frame.height > 0) out_.face = in_frame;
+}
+
 cv::Rect2d UserTracker::body_box(const cv::Rect2d& window) const {
   const cv::Rect2d& k = box_in_window_;
   return cv::Rect2d(window.x + k.x * window.width, window.y + k.y * window.height, k.width * window.width,
@@ -76,18 +83,23 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   if (scale > std::log1p(p_.face_recheck_tolerance) ||
       std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width)
     start(frame, body, out_.init, false);
+  found_face(frame, face->face);
   return FaceCheck::Found;
 }
 
 void UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
   // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
-  if (const auto face = faces_.detect(frame)) start(frame, body_from_face(face->face, p_), InitSource::kFace);
+  if (const auto face = faces_.detect(frame)) {
+    start(frame, body_from_face(face->face, p_), InitSource::kFace);
+    found_face(frame, face->face);
+  }
 }
 
 TrackOutput UserTracker::process(const cv::Mat& frame) {
   if (frame.empty() || frame.depth() != CV_8U || (frame.channels() != 1 && frame.channels() != 3))
     throw std::invalid_argument("UserTracker: frame must be a non-empty CV_8UC1 or CV_8UC3 image");
+  out_.face.reset();  // set again below only if the cascade finds the face in this frame
   if (frame.size() != frame_size_) {
     if (out_.status == TrackStatus::kTracking) reset();
     frame_size_ = frame.size();

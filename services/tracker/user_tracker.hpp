@@ -25,6 +25,10 @@ struct TrackOutput {
   double confidence = 0.0;  //!< PSR of this frame's translation response (0 while searching)
   InitSource init = InitSource::kNone;
   int track_id = 0;         //!< +1 per started track; 0 before the first
+  //! The face the cascade found in THIS frame (pixels, inside the frame): on the frame a track starts from a
+  //! face and on each re-check frame where the face is found (re-anchored or not), manual tracks included;
+  //! empty on every other frame.
+  std::optional<cv::Rect2d> face;
 };
 
 class UserTracker {
@@ -46,6 +50,7 @@ class UserTracker {
 
  private:
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
+  void found_face(const cv::Mat& frame, const cv::Rect2d& face);
   void search(const cv::Mat& frame);
   enum class FaceCheck { Found, Missed, OutOfView };
   FaceCheck recheck_face(const cv::Mat& frame);

@@ -1,184 +1,91 @@
-// gpilot-eval-hands: runs the hands stage over a synthetic scenario and scores it against the synthetic
-// world's ground truth: kind accuracy (NONE/OUT/FRONT) with a confusion matrix, angle and length error of
-// OUT vectors, higher/lower success of FRONT frames; writes a few annotated PNGs. The stage is given the
-// TRUE user box (truth.user_box), so the hands stage is measured apart from the tracker.
-#include <algorithm>
-#include <cmath>
+// gpilot-eval-hands: the hands stage measured apart from the tracker, on
+//   --scenario: a synthetic scenario against the synthetic world's ground truth (synthetic_eval.hpp), or
+//   --coco:     real photos with COCO person keypoints against truth from the keypoints (coco_eval.hpp).
+// A thin CLI: the work is in the files next to it.
 #include <cstdio>
-#include <filesystem>
+#include <iostream>
+#include <map>
 #include <string>
-#include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <nlohmann/json.hpp>
 
-#include "capture/synthetic_world.hpp"
-#include "clock.hpp"
-#include "hands/hand_detector.hpp"
-#include "hands/hand_overlay.hpp"
+#include "coco_eval.hpp"
 #include "hands/hands_params.hpp"
-#include "paths.hpp"
+#include "keypoint_truth.hpp"
 #include "service_cli.hpp"
+#include "synthetic_eval.hpp"
 #include "tracker/tracker_params.hpp"
 
 using namespace gpilot;
 
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(p * static_cast<double>(v.size())) - 1))];
-}
-
-double angle_between_deg(cv::Point2f a, cv::Point2f b) {
-  const double d = std::atan2(a.y, a.x) - std::atan2(b.y, b.x);
-  return std::abs(std::remainder(d, 2 * M_PI)) * 180.0 / M_PI;
-}
-
-const char* kKinds[3] = {"NONE", "OUT", "FRONT"};
-
-}  // namespace
-
 int main(int argc, char** argv) {
   ServiceCli cli("gpilot-eval-hands",
-                 "Scores the hands stage (skin + Alg. 1/2) on a synthetic scenario against its ground truth, with the\n"
-                 "TRUE user box (the tracker is not involved): kind accuracy and confusion matrix, OUT angle and length\n"
-                 "error, FRONT higher/lower success, ms per frame; a few annotated PNGs (skin in red, hand square, vector).");
-  std::string scenario = "tour", png_dir = "eval_hands_png", csv_path;
-  uint64_t seed = 1;
-  int stride = 1, pngs = 6;
+                 "Scores the hands stage (skin + Alg. 1/2, through HandObserver) apart from the tracker.\n"
+                 "--scenario NAME (default): a synthetic scenario against its ground truth, with the TRUE user box (no face):\n"
+                 "  kind accuracy and confusion matrix, OUT angle and length error, FRONT higher/lower success, ms per frame;\n"
+                 "  a few annotated PNGs (skin in red, hand square, vector).\n"
+                 "--coco ANNOTATIONS.json --images DIR: every annotated person of real photos (COCO person keypoints),\n"
+                 "  one fresh HandObserver start per person, with\n"
+                 "  --box annotation: the annotation's bbox; face = the largest Haar face in the tracker's face re-check\n"
+                 "                    window of that box, or none;\n"
+                 "  --box face: the body box the tracker would make (body_from_face, section tracker) from the Haar face\n"
+                 "              found in the person's head region (nose/eyes/ears); no face: counted, not scored.\n"
+                 "  The face goes to the stage too: with hands.box_from_face on, the stage itself works on the box the face\n"
+                 "  implies (--set hands.box_from_face=false keeps the annotation box in --box annotation).\n"
+                 "  Scores: OUT found and its angle error (stage hand - p_uc vs truth wrist - p_uc, p_uc = the stage's own\n"
+                 "  shoulder centre); FRONT found and HIGH/LOW right (stage hand - p_bc, y < 0 = HIGH, vs truth wrist\n"
+                 "  above/below the torso centre); false hands on REST persons; kind accuracy over scored persons.\n"
+                 "  Per-person CSV (--csv), annotated PNGs (--png-dir: skin, hand square, vector, truth arms, person box).\n\n" +
+                     keypoint_truth_rules());
+  SyntheticEvalOptions syn;
+  CocoEvalOptions coco;
+  std::string box = "annotation", png_dir, csv_path;
   bool json = false;
   auto& app = cli.app();
-  app.add_option("--scenario", scenario, "scenario name (deploy/scenarios/NAME.yaml) or path");
-  app.add_option("--seed", seed, "synthetic world seed");
-  app.add_option("--stride", stride, "score every N-th frame")->check(CLI::PositiveNumber);
-  app.add_option("--png-dir", png_dir, "folder for the annotated PNGs ('' = none)");
-  app.add_option("--pngs", pngs, "how many annotated PNGs at most")->check(CLI::NonNegativeNumber);
-  app.add_option("--csv", csv_path, "write one line per frame (truth and detected kind and vector) to this file");
+  auto* scenario_opt = app.add_option("--scenario", syn.scenario, "synthetic mode: scenario name (deploy/scenarios/NAME.yaml) or path");
+  auto* seed_opt = app.add_option("--seed", syn.seed, "synthetic mode: world seed");
+  auto* stride_opt = app.add_option("--stride", syn.stride, "synthetic mode: score every N-th frame")->check(CLI::PositiveNumber);
+  auto* pngs_opt = app.add_option("--pngs", syn.pngs, "synthetic mode: how many annotated PNGs at most")->check(CLI::NonNegativeNumber);
+  auto* coco_opt = app.add_option("--coco", coco.annotations, "COCO person-keypoints JSON: real-photo mode")->check(CLI::ExistingFile);
+  auto* images_opt = app.add_option("--images", coco.images_dir, "COCO mode: folder of the images")->check(CLI::ExistingDirectory);
+  auto* box_opt = app.add_option("--box", box, "COCO mode: user box from the 'annotation' bbox or from the 'face' (as the tracker)")
+                      ->check(CLI::IsMember({"annotation", "face"}));
+  app.add_option("--png-dir", png_dir, "folder for annotated PNGs (synthetic default eval_hands_png; COCO: none unless given; '' = none)");
+  app.add_option("--csv", csv_path, "write one line per frame (synthetic) or per person (COCO) to this file");
   app.add_flag("--json", json, "print one JSON object on stdout");
+  coco_opt->needs(images_opt);
+  images_opt->needs(coco_opt);
+  box_opt->needs(coco_opt);
+  for (auto* o : {scenario_opt, seed_opt, stride_opt, pngs_opt}) o->excludes(coco_opt);
+
   return cli.run(argc, argv, [&](const Config& config) {
-    const auto hands = config.section<HandsParams>("hands");
-    TruthRules rules;
-    rules.tracker = config.section<TrackerParams>("tracker");
-    rules.hands = hands;
-    const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), seed, rules);
-    const std::string model_path = resolve_project_path(hands.skin.model);
-    HandDetector detector(hands, SkinClassifier(SkinModel::load(model_path), hands.skin.threshold));
-
-    const double fps = world.params().fps;
-    const int64_t frames = static_cast<int64_t>(std::floor(world.scenario().duration_s() * fps));
-    int64_t confusion[3][3] = {};
-    std::vector<double> angle_err, length_err_rel, length_err_px, ms;
-    int64_t front_total = 0, front_right = 0, front_detected = 0, front_detected_right = 0, scored = 0;
-    int written = 0, steady = 0, last_truth = -1;
-    bool png_for_kind[3] = {false, false, false};
-    int error_pngs = 0;
-    int64_t last_error_png = -1000000;
-    if (!png_dir.empty()) std::filesystem::create_directories(png_dir);
-    std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
-    if (!csv_path.empty() && !csv) throw std::runtime_error("cannot write " + csv_path);
-    if (csv) std::fprintf(csv, "frame,t_s,truth_kind,kind,truth_x,truth_y,x,y,hand_skin,skin_outside,skin_inside\n");
-
-    for (int64_t i = 0; i < frames; i += stride) {
-      const SyntheticFrame f = world.render(static_cast<double>(i) / fps, i, std::nullopt);
-      const int64_t t0 = monotonic_utime();
-      const HandResult r = detector.detect(f.bgr, f.truth.user_box);
-      ms.push_back(static_cast<double>(monotonic_utime() - t0) / 1000.0);
-      const int truth = std::clamp(f.truth.expected_kind, 0, 2), got = static_cast<int>(r.kind);
-      ++confusion[truth][got];
-      ++scored;
-      steady = truth == last_truth ? steady + 1 : 0;
-      last_truth = truth;
-      const cv::Point2f tv = f.truth.expected_vector;
-      if (csv)
-        std::fprintf(csv, "%lld,%.3f,%s,%s,%.1f,%.1f,%.1f,%.1f,%d,%d,%d\n", static_cast<long long>(i), static_cast<double>(i) / fps,
-                     kKinds[truth], kKinds[got], tv.x, tv.y, r.vector.x, r.vector.y, r.hand_skin, r.skin_outside, r.skin_inside);
-      if (truth == 1 && got == 1) {
-        angle_err.push_back(angle_between_deg(r.vector, tv));
-        const double lt = std::hypot(tv.x, tv.y), lg = std::hypot(r.vector.x, r.vector.y);
-        length_err_px.push_back(std::abs(lg - lt));
-        if (lt > 0) length_err_rel.push_back(std::abs(lg - lt) / lt);
-      }
-      if (truth == 2) {
-        ++front_total;
-        const bool right_side = (r.vector.y < 0) == (tv.y < 0);
-        if (got == 2) {
-          ++front_detected;
-          front_detected_right += right_side;
-          front_right += right_side;
-        }
-      }
-      // PNGs: the first steady frame of each kind (held 10 frames), then wrong kinds at least 2 s apart.
-      const bool steady_pick = steady >= 10 / stride && !png_for_kind[truth];
-      const bool error_pick = truth != got && error_pngs < pngs / 2 && i - last_error_png >= static_cast<int64_t>(2 * fps);
-      if (!png_dir.empty() && written < pngs && (steady_pick || error_pick)) {
-        png_for_kind[truth] = png_for_kind[truth] || steady_pick;
-        if (!steady_pick) {
-          ++error_pngs;
-          last_error_png = i;
-        }
-        cv::Mat img = f.bgr.clone();
-        draw_hand_overlay(img, r, detector.last_mask(), detector.last_roi());
-        const cv::Point2f from = truth == 1 ? f.truth.shoulder_centre : f.truth.body_centre;
-        if (truth != 0) cv::arrowedLine(img, from, from + tv, cv::Scalar(255, 0, 255), 1, cv::LINE_AA, 0, 0.08);
-        char text[160];
-        std::snprintf(text, sizeof text, "frame %lld t %.2f s  truth %s  got %s", static_cast<long long>(i),
-                      static_cast<double>(i) / fps, kKinds[truth], kKinds[got]);
-        cv::putText(img, text, {8, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-        cv::putText(img, text, {8, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-        char name[64];
-        std::snprintf(name, sizeof name, "/frame_%05lld_%s_%s.png", static_cast<long long>(i), kKinds[truth], kKinds[got]);
-        cv::imwrite(png_dir + name, img);
-        ++written;
-      }
-      if ((i / stride) % 50 == 0) std::fprintf(stderr, "\r%lld/%lld frames", static_cast<long long>(i), static_cast<long long>(frames));
+    const bool png_given = app.count("--png-dir") > 0;
+    if (coco.annotations.empty()) {
+      syn.json = json;
+      syn.csv_path = csv_path;
+      if (png_given) syn.png_dir = png_dir;
+      return run_synthetic_eval(syn, config);
     }
-    std::fprintf(stderr, "\n");
-    if (csv) std::fclose(csv);
-    int64_t correct = 0;
-    for (int k = 0; k < 3; ++k) correct += confusion[k][k];
-    const double accuracy = scored ? static_cast<double>(correct) / static_cast<double>(scored) : 0;
-    const double front_rate = front_total ? static_cast<double>(front_right) / static_cast<double>(front_total) : 0;
-    const double front_rate_detected =
-        front_detected ? static_cast<double>(front_detected_right) / static_cast<double>(front_detected) : 0;
-    auto count_truth = [&](int k) { return confusion[k][0] + confusion[k][1] + confusion[k][2]; };
+    coco.box = box == "face" ? BoxMode::Face : BoxMode::Annotation;
+    coco.csv_path = csv_path;
+    coco.png_dir = png_dir;
+    const auto hands = config.section<HandsParams>("hands");
+    const HandsScoreboard board = run_coco_eval(coco, hands, config.section<TrackerParams>("tracker"));
     if (json) {
-      std::printf("{\"scenario\":\"%s\",\"seed\":%llu,\"user_box\":\"truth\",\"frames\":%lld,\"kind_accuracy\":%.4f,",
-                  scenario.c_str(), static_cast<unsigned long long>(seed), static_cast<long long>(scored), accuracy);
-      std::printf("\"confusion\":{\"rows\":\"truth\",\"cols\":\"detected\",\"order\":[\"NONE\",\"OUT\",\"FRONT\"],\"counts\":[");
-      for (int k = 0; k < 3; ++k)
-        std::printf("%s[%lld,%lld,%lld]", k ? "," : "", static_cast<long long>(confusion[k][0]),
-                    static_cast<long long>(confusion[k][1]), static_cast<long long>(confusion[k][2]));
-      std::printf("]},\"out_frames\":%lld,\"out_scored\":%zu,\"angle_error_median_deg\":%.3f,\"angle_error_p90_deg\":%.3f,"
-                  "\"angle_error_max_deg\":%.3f,\"length_error_median_rel\":%.4f,\"length_error_median_px\":%.2f,",
-                  static_cast<long long>(count_truth(1)), angle_err.size(), median(angle_err), percentile(angle_err, 0.9),
-                  percentile(angle_err, 1.0), median(length_err_rel), median(length_err_px));
-      std::printf("\"front_frames\":%lld,\"front_higher_lower_success\":%.4f,\"front_higher_lower_given_detected\":%.4f,"
-                  "\"ms_per_frame_median\":%.4f,\"ms_per_frame_p99\":%.4f,\"pngs\":%d}\n",
-                  static_cast<long long>(front_total), front_rate, front_rate_detected, median(ms), percentile(ms, 0.99), written);
+      const nlohmann::json context = {{"mode", "coco"},
+                                      {"annotations", coco.annotations},
+                                      {"images", coco.images_dir},
+                                      {"box", box},
+                                      {"user_box", box == "face" ? "body_from_face(Haar face on the person's head keypoints)"
+                                                                 : "COCO annotation bbox"},
+                                      {"hands_box_from_face", hands.box_from_face},
+                                      {"truth", "keypoint_truth rules (gpilot-eval-hands --help)"}};
+      std::cout << board.to_json(context).dump() << std::endl;
     } else {
-      std::printf("scenario %s (seed %llu), %lld frames scored, TRUE user box (tracker not involved)\n\n", scenario.c_str(),
-                  static_cast<unsigned long long>(seed), static_cast<long long>(scored));
-      std::printf("confusion (rows truth, columns detected)\n%8s %8s %8s %8s\n", "", "NONE", "OUT", "FRONT");
-      for (int k = 0; k < 3; ++k)
-        std::printf("%8s %8lld %8lld %8lld\n", kKinds[k], static_cast<long long>(confusion[k][0]),
-                    static_cast<long long>(confusion[k][1]), static_cast<long long>(confusion[k][2]));
-      std::printf("\nkind accuracy               %.2f %%\n", 100 * accuracy);
-      std::printf("OUT angle error             median %.2f deg, p90 %.2f, max %.2f (%zu frames)\n", median(angle_err),
-                  percentile(angle_err, 0.9), percentile(angle_err, 1.0), angle_err.size());
-      std::printf("OUT length error            median %.1f %% (%.1f px)\n", 100 * median(length_err_rel), median(length_err_px));
-      std::printf("FRONT higher/lower right    %.2f %% of %lld FRONT frames (%.2f %% of those detected FRONT; paper 85.45 %%)\n",
-                  100 * front_rate, static_cast<long long>(front_total), 100 * front_rate_detected);
-      std::printf("time                        median %.3f ms, p99 %.3f ms per frame\n", median(ms), percentile(ms, 0.99));
-      if (written) std::printf("annotated PNGs              %d in %s\n", written, png_dir.c_str());
+      board.print_table(stdout, "COCO persons of " + coco.annotations + ", box: " + box +
+                                    (box == "face" ? " (body_from_face of the Haar face on the person)" : " (COCO annotation bbox)"));
+      if (!csv_path.empty()) std::printf("per-person CSV              %s\n", csv_path.c_str());
+      if (!png_dir.empty()) std::printf("annotated PNGs              %s\n", png_dir.c_str());
     }
     return 0;
   });

@@ -220,6 +220,10 @@ cv::Mat draw_overlay(const cv::Mat& frame, int64_t seq, const FrameMessages& m, 
                 1, cv::LINE_AA);
   }
 
+  // The face the tracker's cascade found in this frame (start of a track, re-checks), thin.
+  if (m.track && m.track->face_box[2] > 0 && m.track->face_box[3] > 0)
+    cv::rectangle(img, to_rect(m.track->face_box), kMarkRed, 1, cv::LINE_8);
+
   // Hand square.
   if (m.hand && m.hand->kind != hand_obs_t::KIND_NONE) {
     cv::rectangle(img, to_rect(m.hand->hand_box), kMarkRed, t, cv::LINE_8);

@@ -1,11 +1,15 @@
 // gpilot-tracker as a real process over real LCM (inside a private network namespace): a TRACKER_INIT box,
 // then real frames on CAMERA; one USER_TRACK per good frame with its seq and utime, boxes identical to the
 // core run in-process over the same frames; malformed CAMERA messages rejected (HEALTH) without a
-// USER_TRACK and without advancing the track.
+// USER_TRACK and without advancing the track. After a reset, a frame with a face: the track it starts carries
+// the face box the core finds.
 #include <gtest/gtest.h>
 
 #include <map>
 #include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bus_node.hpp"
 #include "child_process.hpp"
@@ -94,9 +98,40 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
     EXPECT_EQ(got.box[1], static_cast<float>(want.box.y)) << "seq " << s;
     EXPECT_EQ(got.box[2], static_cast<float>(want.box.width)) << "seq " << s;
     EXPECT_EQ(got.confidence, static_cast<float>(want.confidence)) << "seq " << s;
+    // No face looked for (manual start, no re-check within 16 frames): all zero.
+    ASSERT_FALSE(want.face.has_value()) << "seq " << s;
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(got.face_box[k], 0.0f) << "seq " << s;
   }
   // AND HEALTH counts the two malformed messages.
   ASSERT_TRUE(spin_until([&] { return last_health.rejected >= 2 && last_health.messages_out >= 16; }, 5000))
       << "rejected " << last_health.rejected << " last reason: " << last_health.last_reject_reason;
   EXPECT_EQ(last_health.rejected, 2);
+
+  // GIVEN a reset, WHEN a frame with a frontal face comes (the astronaut photograph in a 640x360 frame)
+  tracker_init_t reset{};
+  reset.utime = 2;
+  reset.seq = 2;
+  reset.command = tracker_init_t::COMMAND_RESET;
+  reset.source = "test_lcm_tracker";
+  bus.publish("TRACKER_INIT", reset);
+  bus.spin_once(100);
+  const cv::Mat a = cv::imread(std::string(GPILOT_SOURCE_DIR) + "/data/people/astronaut.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(a.empty());
+  cv::Mat face_frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
+  cv::resize(a, face_frame(cv::Rect(140, 0, 360, 360)), cv::Size(360, 360), 0, 0, cv::INTER_AREA);
+  bus.publish("CAMERA", mat_to_image(face_frame, 5000 + 33000 * 16, 16));
+  ASSERT_TRUE(spin_until([&] { return tracks.count(16) > 0; }, 10000)) << "no USER_TRACK for the face frame";
+  // THEN the face search starts a track, and USER_TRACK carries the face the core finds in that frame.
+  core.reset();
+  const TrackOutput want = core.process(face_frame);
+  ASSERT_TRUE(want.face.has_value());
+  const user_track_t& got = tracks[16];
+  EXPECT_EQ(got.status, user_track_t::STATUS_TRACKING);
+  EXPECT_EQ(got.init_source, user_track_t::INIT_FACE);
+  EXPECT_EQ(got.track_id, 2);
+  EXPECT_EQ(got.face_box[0], static_cast<float>(want.face->x));
+  EXPECT_EQ(got.face_box[1], static_cast<float>(want.face->y));
+  EXPECT_EQ(got.face_box[2], static_cast<float>(want.face->width));
+  EXPECT_EQ(got.face_box[3], static_cast<float>(want.face->height));
+  EXPECT_TRUE(cv::Rect2d(got.face_box[0], got.face_box[1], got.face_box[2], got.face_box[3]).contains({298, 81}));
 }

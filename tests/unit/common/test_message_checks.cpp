@@ -1,6 +1,7 @@
 // check_message: the reasons a structurally bad message is rejected before any stage sees it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -65,6 +66,45 @@ TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
   EXPECT_EQ(check_message(t), "manual box has no area");
   t.command = tracker_init_t::COMMAND_RESET;
   EXPECT_EQ(check_message(t), "");
+}
+
+TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
+  user_track_t t{};
+  t.status = user_track_t::STATUS_TRACKING;
+  t.image_width = 640;
+  t.image_height = 480;
+  // GIVEN no face in this frame (all zero): fine
+  EXPECT_EQ(check_message(t), "");
+  // and a face inside the image, up to its edges: fine
+  const float face[4] = {600, 400, 40, 80};
+  std::copy(face, face + 4, t.face_box);
+  EXPECT_EQ(check_message(t), "");
+  t.face_box[0] = 0;
+  EXPECT_EQ(check_message(t), "");
+
+  // WHEN a value is NaN or infinite, a size negative or zero, or the box leaves the image: rejected
+  t.face_box[1] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(check_message(t), "face_box is not finite");
+  t.face_box[1] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(check_message(t), "face_box is not finite");
+  std::copy(face, face + 4, t.face_box);
+  t.face_box[2] = -40;
+  EXPECT_EQ(check_message(t), "face_box has a negative size");
+  t.face_box[2] = 40;
+  t.face_box[3] = -1;
+  EXPECT_EQ(check_message(t), "face_box has a negative size");
+  t.face_box[3] = 0;
+  EXPECT_EQ(check_message(t), "face_box is neither all zero nor a box with an area");
+  t.face_box[3] = 80.5f;
+  EXPECT_EQ(check_message(t), "face_box is outside the 640x480 image");
+  t.face_box[3] = 80;
+  t.face_box[0] = -1;
+  EXPECT_EQ(check_message(t), "face_box is outside the 640x480 image");
+  t.face_box[0] = 601;
+  EXPECT_EQ(check_message(t), "face_box is outside the 640x480 image");
+  t.image_width = 0;  // a face with no image size to be inside
+  t.face_box[0] = 0;
+  EXPECT_EQ(check_message(t), "face_box is outside the 0x480 image");
 }
 
 }  // namespace

@@ -141,5 +141,71 @@ TEST(TrackerTour, FaceHiddenForThreeRechecksIsLost) {
   EXPECT_EQ(dsst_alone, -1) << "DSST alone was expected to hold on";
 }
 
+// USER_TRACK's face box (TrackOutput::face): the face the cascade found in this very frame, for the hands
+// stage to learn the user's skin from. The idle user, the camera still: a track from the face search carries
+// it on its start frame and on each re-check frame (every face_recheck_frames), near the true face; on every
+// other frame it is empty.
+TEST(TrackerTour, FaceBoxOnTheStartFrameAndOnEachRecheckFrameOnly) {
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::load("idle"), 1);
+  const TrackerParams tp;
+  ASSERT_GT(tp.face_recheck_frames, 0);
+  UserTracker tracker(tp);
+  int found_at = -1, faces = 0;
+  for (int i = 0; i < 3 * tp.face_recheck_frames + 5; ++i) {
+    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
+    const TrackOutput out = tracker.process(f.bgr);
+    if (found_at < 0 && out.status == TrackStatus::kTracking) found_at = i;
+    const bool looked = found_at >= 0 && (i - found_at) % tp.face_recheck_frames == 0;
+    if (!looked) {
+      EXPECT_FALSE(out.face.has_value()) << "frame " << i << ": " << *out.face;
+      continue;
+    }
+    ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i;
+    ASSERT_TRUE(out.face.has_value()) << "frame " << i << (i == found_at ? " (start)" : " (re-check)");
+    ++faces;
+    EXPECT_GT(iou(*out.face, cv::Rect2d(f.truth.face_box)), 0.7) << "frame " << i << ": " << *out.face
+                                                                 << " vs truth " << f.truth.face_box;
+    EXPECT_TRUE((*out.face & cv::Rect2d(0, 0, f.bgr.cols, f.bgr.rows)) == *out.face) << "frame " << i;
+  }
+  EXPECT_GE(found_at, 0);
+  EXPECT_LE(found_at, 2) << "the face search should find the user at once";
+  EXPECT_EQ(faces, 4);  // the start and three re-checks
+}
+
+// A manual track (TRACKER_INIT) whose box is 20 % too large and off to the side: nothing is looked for on its
+// start frame, and the first re-check finds the face, re-anchors the box on it (the body box of that face)
+// and publishes the face on that frame.
+TEST(TrackerTour, ManualTrackPublishesTheFaceItsRecheckFindsAndReanchorsOn) {
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::load("idle"), 1);
+  const TrackerParams tp;
+  UserTracker tracker(tp);
+  const cv::Rect2d truth0(world.render(0.0, 0, std::nullopt).truth.user_box);
+  // 1.2x the true box about its centre, then 8 % of its width to the right.
+  const cv::Rect2d off(truth0.x - 0.1 * truth0.width + 0.08 * truth0.width, truth0.y - 0.1 * truth0.height,
+                       1.2 * truth0.width, 1.2 * truth0.height);
+  ASSERT_EQ(tracker.set_box(off), "");
+  for (int i = 0; i <= tp.face_recheck_frames + 1; ++i) {
+    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
+    const TrackOutput out = tracker.process(f.bgr);
+    ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i;
+    EXPECT_EQ(out.init, InitSource::kManual);
+    EXPECT_EQ(out.track_id, 1);
+    if (i != tp.face_recheck_frames) {
+      EXPECT_FALSE(out.face.has_value()) << "frame " << i;
+      if (i == tp.face_recheck_frames - 1) {  // still the manual box's scale just before the re-check
+        EXPECT_GT(out.box.height / f.truth.user_box.height, 1.12) << out.box;
+      }
+      continue;
+    }
+    ASSERT_TRUE(out.face.has_value()) << "the re-check did not find the face";
+    EXPECT_GT(iou(*out.face, cv::Rect2d(f.truth.face_box)), 0.7) << *out.face << " vs truth " << f.truth.face_box;
+    // Re-anchored: the box is now the face's body box, not the manual box's drifted estimate.
+    EXPECT_GT(iou(out.box, body_from_face(*out.face, tp)), 0.9) << out.box << " vs " << body_from_face(*out.face, tp);
+    EXPECT_LT(std::abs(std::log(out.box.height / f.truth.user_box.height)), 0.1) << out.box;
+  }
+}
+
 }  // namespace
 }  // namespace gpilot

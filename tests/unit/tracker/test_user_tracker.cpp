@@ -47,6 +47,8 @@ TEST(UserTracker, StaysOnThePersonOfTheRealSequence) {
     ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i + 1 << " psr " << out.confidence;
     EXPECT_EQ(out.init, InitSource::kManual);
     EXPECT_EQ(out.track_id, 1);
+    // He has his back to the camera: the re-checks (frames 26, 51) find no face, none is published.
+    EXPECT_FALSE(out.face.has_value()) << "frame " << i + 1 << ": " << *out.face;
   }
   // The orange shirt in frame 53, boxed by hand on the image: x 284..322, y 100..164 (the camera has
   // moved towards the man: he is lower in the frame and 0.98x the size).
@@ -102,6 +104,11 @@ TEST(UserTracker, CutToAnotherSceneIsLostThenTheFaceSearchFindsTheNewUser) {
   // Her face is at about (140 + 225 * 360/512, 115 * 360/512) = (298, 81) in the cut frame.
   EXPECT_TRUE(out.box.contains({298, 81})) << out.box;
   EXPECT_TRUE(out.box.contains({298, 250})) << out.box;  // her chest
+  // The face that started the track is published with it, on this frame only.
+  ASSERT_TRUE(out.face.has_value());
+  EXPECT_TRUE(out.face->contains({298, 81})) << *out.face;
+  EXPECT_LT(out.face->width, 140.0) << *out.face;  // a face, not the body
+  EXPECT_FALSE(t.process(cut).face.has_value());
 }
 
 TEST(UserTracker, CoveredPersonIsLostAndStaysLostWithoutAFace) {
@@ -138,6 +145,7 @@ TEST(UserTracker, SameFramesGiveIdenticalOutputs) {
     ASSERT_EQ(x.box, y.box);
     ASSERT_EQ(x.confidence, y.confidence);
     ASSERT_EQ(x.status, y.status);
+    ASSERT_EQ(x.face, y.face);
   }
 }
 

@@ -137,6 +137,26 @@ TEST_F(OverlayTest, LostTrackIsAmberAndSearchingHasNoBox) {
   EXPECT_FALSE(is_colour(img, static_cast<int>(b.x), 150, kLostAmber));
 }
 
+TEST_F(OverlayTest, FaceBoxIsAThinRedBoxOnlyWhenTheTrackCarriesOne) {
+  // GIVEN a track without a face (all zero): nothing where a face box would be
+  const cv::Rect2f b = test::user_box_of(kSeq);
+  const int fx = static_cast<int>(b.x) + 20, fy = static_cast<int>(b.y) + 10, fw = 24, fh = 24;
+  cv::Mat img = draw();
+  EXPECT_FALSE(is_red(img, fx, fy + 12));
+  // WHEN the cascade found a face in this frame: its edges are red, one pixel wide, its inside untouched
+  msgs.track->face_box[0] = static_cast<float>(fx);
+  msgs.track->face_box[1] = static_cast<float>(fy);
+  msgs.track->face_box[2] = static_cast<float>(fw);
+  msgs.track->face_box[3] = static_cast<float>(fh);
+  img = draw();
+  EXPECT_TRUE(is_red(img, fx, fy + 12));
+  EXPECT_TRUE(is_red(img, fx + fw - 1, fy + 12));
+  EXPECT_TRUE(is_red(img, fx + 12, fy));
+  EXPECT_TRUE(is_red(img, fx + 12, fy + fh - 1));
+  EXPECT_FALSE(is_red(img, fx + 1, fy + 12));  // thin
+  EXPECT_FALSE(is_red(img, fx + 12, fy + 12));
+}
+
 TEST_F(OverlayTest, HudStripIsAddedBelowAndLeavesTheFrameAsItWas) {
   const cv::Mat plain = draw();
   options.hud = true;

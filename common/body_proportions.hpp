@@ -1,0 +1,24 @@
+// The user's body box from their face box: the paper's "preset head-body ratio". One definition for the
+// tracker (which starts and re-anchors tracks on faces) and the hands stage (which works on the box the face
+// implies when it is given one).
+#pragma once
+
+#include <opencv2/core/types.hpp>
+
+namespace gpilot {
+
+struct BodyProportions {
+  double width_in_faces = 2.75;   //!< body box width / face box width
+  double height_in_faces = 7.0;   //!< body box height / face box height
+  double top_in_faces = 0.25;     //!< body box top above the face box top, in face heights
+};
+
+// Centred on the face horizontally, its top a little above the face top; not clipped.
+inline cv::Rect2d body_from_face(const cv::Rect2d& face, const BodyProportions& p) {
+  const double w = face.width * p.width_in_faces;
+  const double h = face.height * p.height_in_faces;
+  const double cx = face.x + face.width / 2;
+  return cv::Rect2d(cx - w / 2, face.y - p.top_in_faces * face.height, w, h);
+}
+
+}  // namespace gpilot

@@ -1,0 +1,41 @@
+#include "hand_observer.hpp"
+
+#include <cmath>
+
+namespace gpilot {
+
+HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior, const BodyProportions& body)
+    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior), body_(body) {}
+
+void HandObserver::reset() {
+  adapter_.reset();
+  adaptation_ = SkinAdaptation{};
+  track_id_ = -1;
+}
+
+HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
+  CV_Assert(bgr.type() == CV_8UC3);
+  if (user.track_id != track_id_) {
+    reset();
+    track_id_ = user.track_id;
+  }
+  const HandsParams& p = detector_.params();
+  const bool face = user.face && user.face->width >= 1 && user.face->height >= 1;
+  const cv::Rect2f box = face && p.box_from_face ? cv::Rect2f(body_from_face(*user.face, body_)) : user.box;
+  if (face) adapter_.learn_user(bgr, *user.face);
+  const HandGeometry g = hand_geometry(p, box, bgr.size());
+  if (g.valid) {
+    const double m = p.skin.adapt.scene_margin * box.width;
+    const cv::Rect exclude = cv::Rect(cv::Point(static_cast<int>(std::floor(box.x - m)), static_cast<int>(std::floor(box.y - m))),
+                                      cv::Point(static_cast<int>(std::ceil(box.br().x + m)), static_cast<int>(std::ceil(box.br().y)))) &
+                             cv::Rect(0, 0, bgr.cols, bgr.rows);
+    adapter_.learn_scene(bgr, exclude);
+  }
+  const HandResult r = detector_.detect(bgr, box, &adapter_.classifier());
+  adaptation_.user_samples = adapter_.user_samples();
+  adaptation_.scene_samples = adapter_.scene_samples();
+  adaptation_.changed_fraction = adapter_.changed_fraction();
+  return r;
+}
+
+}  // namespace gpilot

@@ -1,0 +1,58 @@
+// The skin model that learns this user and this scene (the paper's future work), on top of the trained table:
+//   P(c|skin)  = (1 - a) P_table(c|skin) + a U(c)   U: this user's skin, from the face the tracker found
+//                                                   (the cheek band of the face box, pixels the table already
+//                                                   calls likely skin), a <= adapt.user_weight
+//   P(c|other) = (1 - b) P_table(c|not) + b S(c)    S: the scene, pixels outside the hands' search rectangle,
+//                                                   with decay, b <= adapt.scene_weight
+//   skin iff P(c|skin) P(skin) / (P(c|skin) P(skin) + P(c|other) P(not)) > skin.threshold  (Bayes, as Jones & Rehg)
+// so a wall colour that is everywhere around the user stops being skin and the user's own tone stays skin.
+// The weights are the floors that keep one bad face or one odd frame from taking the model over.
+// State depends only on the frames, boxes and faces given; no clock.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "hands/hands_params.hpp"
+#include "hands/skin_model.hpp"
+
+namespace gpilot {
+
+class SkinAdapter {
+ public:
+  // Throws SkinModelError when adaptation is on and the model has no likelihood tables (retrain it).
+  SkinAdapter(const SkinParams& params, const SkinModel& prior);
+
+  // Learns the user's skin from the face box (pixels, clipped to the image). bgr: CV_8UC3.
+  void learn_user(const cv::Mat& bgr, const cv::Rect2f& face);
+  // Learns the scene from every adapt.scene_stride-th pixel of bgr outside `exclude` (the search rectangle).
+  void learn_scene(const cv::Mat& bgr, const cv::Rect& exclude);
+  // Forgets both (the trained table alone).
+  void reset();
+
+  // The classifier for the state learnt so far (rebuilt only when it changed).
+  const SkinClassifier& classifier();
+
+  int64_t user_samples() const { return user_samples_; }
+  int64_t scene_samples() const { return scene_samples_; }
+  //! Fraction of colour bins whose decision differs from the trained table's (after the last rebuild).
+  double changed_fraction() const { return changed_fraction_; }
+
+ private:
+  void blend(std::vector<double>& model, const std::vector<double>& sample, double total, double rate, bool first);
+  void rebuild();
+
+  SkinParams p_;
+  SkinModel prior_;
+  SkinClassifier prior_classifier_, adapted_;
+  std::vector<double> user_, scene_, sample_;
+  int64_t user_samples_ = 0, scene_samples_ = 0;
+  int frames_since_rebuild_ = 0;
+  bool dirty_ = false, built_ = false;
+  double changed_fraction_ = 0;
+};
+
+}  // namespace gpilot

@@ -1,0 +1,118 @@
+#include "coco_eval.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "coco_keypoints.hpp"
+#include "hands/hand_observer.hpp"
+#include "hands/hand_overlay.hpp"
+#include "hands/skin_model.hpp"
+#include "paths.hpp"
+#include "person_csv.hpp"
+#include "truth_overlay.hpp"
+
+namespace gpilot {
+
+namespace {
+
+std::string png_name(const CocoImage& im, int64_t annotation_id, BoxMode mode) {
+  const std::string stem = std::filesystem::path(im.file_name).stem().string();
+  return stem + "_" + std::to_string(annotation_id) + "_" + box_mode_name(mode) + ".png";
+}
+
+}  // namespace
+
+HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands, const TrackerParams& tracker) {
+  const CocoKeypointFile coco = CocoKeypointFile::load(o.annotations);
+  // The tracker's head-body ratios: with hands.box_from_face the stage works on the box a given face implies.
+  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), tracker.body());
+  UserViewChooser chooser(tracker, o.box);
+  std::unique_ptr<PersonCsv> csv;
+  if (!o.csv_path.empty()) csv = std::make_unique<PersonCsv>(o.csv_path);
+  if (!o.png_dir.empty()) std::filesystem::create_directories(o.png_dir);
+
+  HandsScoreboard board;
+  int32_t track_id = 0;
+  size_t image_no = 0;
+  for (const CocoImage& im : coco.images()) {
+    ++image_no;
+    std::vector<const CocoAnnotation*> people;
+    for (const CocoAnnotation& a : coco.annotations())
+      if (a.image_id == im.id) people.push_back(&a);
+    if (people.empty()) continue;
+    const std::string path = (std::filesystem::path(o.images_dir) / im.file_name).string();
+    const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+    if (o.progress)
+      std::fprintf(stderr, "[%zu/%zu] %s: %zu persons%s\n", image_no, coco.images().size(), im.file_name.c_str(), people.size(),
+                   bgr.empty() ? " (image does not load: skipped)" : "");
+    if (!bgr.empty() && (bgr.cols != im.width || bgr.rows != im.height))
+      std::fprintf(stderr, "warning: %s is %dx%d, the annotations say %dx%d\n", path.c_str(), bgr.cols, bgr.rows, im.width, im.height);
+
+    for (const CocoAnnotation* a : people) {
+      board.add_read();
+      PersonCsvRow row;
+      row.image = im.file_name;
+      row.annotation_id = a->id;
+      row.box_mode = box_mode_name(o.box);
+      row.box = a->bbox;
+      if (bgr.empty()) {
+        board.add_image_unreadable();
+        row.status = "image_unreadable";
+        row.note = path;
+        if (csv) csv->write(row);
+        continue;
+      }
+      const PersonKeypointTruth truth = keypoint_truth(BodyKeypoints::from([&](const std::string& name) -> std::optional<BodyPoint> {
+        const auto k = coco.keypoint(*a, name);
+        if (!k) return std::nullopt;
+        return BodyPoint{k->p, k->v};
+      }));
+      row.truth = &truth;
+      if (!truth.usable) {
+        board.add_skipped_not_visible();
+        row.status = "skipped_not_visible";
+        row.note = truth.skip_reason;
+        if (csv) csv->write(row);
+        continue;
+      }
+      board.add_truth(truth);
+      const ChosenView view = chooser.choose(bgr, a->bbox, truth, ++track_id);
+      row.face = view.face;
+      row.note = view.note;
+      if (view.face) board.add_face_found();
+      std::optional<HandResult> result;
+      std::optional<PersonScore> score;
+      if (!view.view) {
+        board.add_no_face(truth.person);
+        row.status = "no_face";
+      } else {
+        observer.reset();
+        result = observer.observe(bgr, *view.view);
+        score = score_person(truth, *result);
+        board.add_run(truth, *result, *score);
+        row.status = "run";
+        row.box = view.view->box;
+        row.result = &*result;
+        row.score = &*score;
+      }
+      if (csv) csv->write(row);
+      if (!o.png_dir.empty()) {
+        cv::Mat img = bgr.clone();
+        if (result) draw_hand_overlay(img, *result, observer.last_mask(), observer.last_roi());
+        char caption[256];
+        std::snprintf(caption, sizeof caption, "%s #%lld  box %s\ntruth %s (L %s, R %s)  stage %s%s%s", im.file_name.c_str(),
+                      static_cast<long long>(a->id), box_mode_name(o.box), person_truth_name(truth.person), arm_truth_name(truth.left.label),
+                      arm_truth_name(truth.right.label), result ? hand_kind_name(result->kind) : "not run",
+                      view.note.empty() ? "" : "\n", view.note.c_str());
+        draw_keypoint_truth(img, truth, a->bbox, view.face, caption);
+        cv::imwrite((std::filesystem::path(o.png_dir) / png_name(im, a->id, o.box)).string(), img);
+      }
+    }
+  }
+  return board;
+}
+
+}  // namespace gpilot

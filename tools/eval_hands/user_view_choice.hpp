@@ -1,0 +1,53 @@
+// Which user box and face the hands stage is given for one annotated person of a photo:
+//   annotation: the annotation's bbox; face = the largest Haar face in the top part of that box, searched in
+//               the window the tracker's face re-check uses for a box (UserTracker::recheck_face), or none.
+//   face:       the body box the tracker would make from this person's face: the largest Haar face in the
+//               head region spanned by the nose/eyes/ears keypoints (their face box grown 2x), accepted if
+//               its centre lies in that face box grown 1.5x; body box = body_from_face(face, tracker params)
+//               (unclipped, as the tracker starts a track). No face: no view ("no face").
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "hands/hand_observer.hpp"
+#include "keypoint_truth.hpp"
+#include "tracker/face_detector.hpp"
+#include "tracker/tracker_params.hpp"
+
+namespace gpilot {
+
+enum class BoxMode { Annotation, Face };
+const char* box_mode_name(BoxMode m);  // "annotation", "face"
+
+struct ChosenView {
+  std::optional<UserView> view;    //!< none: no face in face mode (the person is not run)
+  std::optional<cv::Rect2f> face;  //!< the Haar face used (both modes), if any
+  cv::Rect search_window;          //!< where the face was looked for (image pixels, clipped)
+  std::string note;                //!< why there is no view / no face
+};
+
+class UserViewChooser {
+ public:
+  // Throws std::runtime_error when the cascade does not load.
+  UserViewChooser(const TrackerParams& tracker, BoxMode mode);
+
+  ChosenView choose(const cv::Mat& bgr, const cv::Rect2f& annotation_box, const PersonKeypointTruth& truth,
+                    int32_t track_id);
+
+  BoxMode mode() const { return mode_; }
+
+ private:
+  TrackerParams tracker_;
+  BoxMode mode_;
+  FaceDetector faces_;
+};
+
+// The tracker's face re-check window for a body box (UserTracker::recheck_face): 3 face widths wide centred on
+// the box, from 0.75 face heights above the expected face top, 2.5 face heights tall; face size from the box by
+// the head-body ratios.
+cv::Rect face_recheck_window(const cv::Rect2f& box, const TrackerParams& tracker);
+
+}  // namespace gpilot
