@@ -72,12 +72,23 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
 
 int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g) {
   if (params_.max_blob_hand_areas <= 0 || mask.empty()) return 0;
+  // Measured outside the user box only: a wall or a wooden cabinet beside the user is skin-coloured there,
+  // while a bare arm reaching out leaves only its forearm and hand outside (a bare torso is Alg. 2's matter).
   const double max_area = params_.max_blob_hand_areas * g.hand_side * g.hand_side;
-  const int n = cv::connectedComponentsWithStats(mask, labels_, stats_, centroids_, 8, CV_32S);
+  const int n = cv::connectedComponents(mask, labels_, 8, CV_32S);
+  if (n <= 1) return 0;
+  std::vector<int> outside(static_cast<size_t>(n), 0);
+  const cv::Rect box = g.box - g.roi.tl();
+  for (int y = 0; y < mask.rows; ++y) {
+    const int32_t* l = labels_.ptr<int32_t>(y);
+    const bool row_in = y >= box.y && y < box.br().y;
+    for (int x = 0; x < mask.cols; ++x)
+      if (l[x] && !(row_in && x >= box.x && x < box.br().x)) ++outside[static_cast<size_t>(l[x])];
+  }
   std::vector<uint8_t> drop(static_cast<size_t>(n), 0);
   int dropped = 0;
   for (int i = 1; i < n; ++i)
-    if (stats_.at<int32_t>(i, cv::CC_STAT_AREA) > max_area) drop[static_cast<size_t>(i)] = 1, ++dropped;
+    if (outside[static_cast<size_t>(i)] > max_area) drop[static_cast<size_t>(i)] = 1, ++dropped;
   if (!dropped) return 0;
   for (int y = 0; y < mask.rows; ++y) {
     uint8_t* m = mask.ptr<uint8_t>(y);

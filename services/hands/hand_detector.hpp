@@ -6,8 +6,8 @@
 //           |p_uc.x - p.x| + λ2 (p_uc.y - p.y) + λ1 F_skin(p), result p - p_uc (KIND OUT);
 //   Alg. 2 (only if Alg. 1 found nothing): argmax over skin pixels inside the box of
 //           -|p_bc.x - p.x| + λ3 F_skin(p), accepted if |p_bc.x - p.x| < w/5 and F_skin > 30, result p - p_bc.
-// Ours, on top (each a config value, 0 = off): skin components larger than a few hand squares are dropped
-// (walls, wood); Alg. 1 counts only skin within reach of a shoulder and, below the shoulder line, far enough
+// Ours, on top (each a config value, 0 = off): skin components with more than a few hand squares outside the
+// user box are dropped (walls, wood); Alg. 1 counts only skin within reach of a shoulder and, below the shoulder line, far enough
 // from straight down that a hanging forearm is not a stretched-out arm.
 // Pure: no LCM, no clock. Image axes: x right, y down, pixels.
 #pragma once
@@ -76,7 +76,7 @@ class HandDetector {
 
   HandsParams params_;
   SkinClassifier skin_;
-  cv::Mat mask_, integral_, labels_, stats_, centroids_;
+  cv::Mat mask_, integral_, labels_;
   cv::Rect last_roi_;
 };
 

@@ -8,7 +8,7 @@ namespace gpilot {
 // The skin model that learns the user and the scene (SkinAdapter): none of these is the paper's (its future work).
 struct SkinAdaptParams {
   bool enabled = true;               //!< false: the trained table alone (the paper)
-  double user_weight = 0.5;          //!< a: share of this user's skin histogram in P(c|skin); 1 - a stays the table's
+  double user_weight = 0.5;          //!< a: weight of this user's skin histogram added to the table's P(c|skin)
   double user_rate = 0.3;            //!< each new face blends in at this rate
   double scene_weight = 0.6;         //!< b: share of the scene histogram in P(c|not skin)
   double scene_rate = 0.1;           //!< each frame's scene sample blends in at this rate (decay)
@@ -28,7 +28,7 @@ struct SkinAdaptParams {
   template <class V>
   void visit(V& v) {
     v("enabled", enabled, "learn the user's skin (face) and the scene's colours on top of the trained table");
-    v("user_weight", user_weight, 0.0, 1.0, "share of the user's face histogram in P(colour|skin)");
+    v("user_weight", user_weight, 0.0, 1.0, "weight of the user's face histogram added to P(colour|skin)");
     v("user_rate", user_rate, 0.0, 1.0, "blend rate of each new face sample");
     v("scene_weight", scene_weight, 0.0, 1.0, "share of the scene histogram in P(colour|not skin)");
     v("scene_rate", scene_rate, 0.0, 1.0, "blend rate of each frame's scene sample (decay)");
@@ -88,8 +88,8 @@ struct HandsParams {
   int match_window = 15;            //!< frames/tracks wait this many seqs for their partner, then are dropped
   // Hands that are hand-shaped and within reach (ours, not the paper's: colour alone finds walls, wood and bare
   // forearms on real photos; hands README, ablation table). 0 turns each off.
-  double max_blob_hand_areas = 4.0;  //!< a skin component larger than this many hand squares is no hand (a wall,
-                                     //!< a face with neck; a bare arm with its hand is ~3)
+  double max_blob_hand_areas = 4.0;  //!< a skin component with more than this many hand squares outside the user
+                                     //!< box is no hand (a wall, wood; a bare forearm and hand reaching out is ~2)
   double shoulder_half_ratio = 0.35; //!< the shoulders sit this many box widths either side of p_uc
   double reach_ratio = 1.6;          //!< Alg. 1: a hand lies within this many box widths of its shoulder
   double out_min_angle_deg = 25.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
@@ -118,7 +118,7 @@ struct HandsParams {
     v("front_gate_ratio", front_gate_ratio, 0.0, 1.0, "Alg. 2: |p_bc.x - p.x| below ratio x box width (paper 1/5)");
     v("front_min_skin", front_min_skin, 0, 1000000, "Alg. 2: F_skin needed, more than (paper 30)");
     v("match_window", match_window, 1, 1000, "CAMERA/USER_TRACK pairing: seqs an unmatched one waits before it is dropped");
-    v("max_blob_hand_areas", max_blob_hand_areas, 0.0, 1000.0, "skin component above this many hand squares is no hand (0 = off; ours)");
+    v("max_blob_hand_areas", max_blob_hand_areas, 0.0, 1000.0, "skin component with more hand squares outside the box is no hand (0 = off; ours)");
     v("shoulder_half_ratio", shoulder_half_ratio, 0.0, 2.0, "shoulders this many box widths either side of p_uc");
     v("reach_ratio", reach_ratio, 0.0, 10.0, "Alg. 1: hand within this many box widths of its shoulder (0 = off; ours)");
     v("out_min_angle_deg", out_min_angle_deg, 0.0, 90.0, "Alg. 1: hand below the shoulders this far from straight down at least (0 = off; ours)");

@@ -1,12 +1,14 @@
 // The skin model that learns this user and this scene (the paper's future work), on top of the trained table:
-//   P(c|skin)  = (1 - a) P_table(c|skin) + a U(c)   U: this user's skin, from the face the tracker found
+//   P(c|skin) ~ P_table(c|skin) + a U(c)            U: this user's skin, from the face the tracker found
 //                                                   (the cheek band of the face box, pixels the table already
-//                                                   calls likely skin), a <= adapt.user_weight
+//                                                   calls likely skin), a = adapt.user_weight: it only adds,
+//                                                   so a wrong face cannot make the user's hands non-skin
 //   P(c|other) = (1 - b) P_table(c|not) + b S(c)    S: the scene, pixels outside the hands' search rectangle,
 //                                                   with decay, b <= adapt.scene_weight
 //   skin iff P(c|skin) P(skin) / (P(c|skin) P(skin) + P(c|other) P(not)) > skin.threshold  (Bayes, as Jones & Rehg)
 // so a wall colour that is everywhere around the user stops being skin and the user's own tone stays skin.
-// The weights are the floors that keep one bad face or one odd frame from taking the model over.
+// The table is the floor: the user's histogram only adds skin colours, and the scene's share is bounded by b,
+// so one bad face or one odd frame cannot take the model over.
 // State depends only on the frames, boxes and faces given; no clock.
 #pragma once
 

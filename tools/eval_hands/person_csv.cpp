@@ -60,7 +60,7 @@ void PersonCsv::write(const PersonCsvRow& r) {
   if (r.score) {
     const PersonScore& s = *r.score;
     line += s.truth_arm + "," + point(s.truth_vector) + "," + (s.out_angle_error_deg ? num(*s.out_angle_error_deg) : "") + "," +
-            (s.front_high_low_right ? (*s.front_high_low_right ? "1" : "0") : "") + "," + (s.scored ? (s.false_hand ? "1" : "0") : "") + ",";
+            (s.front_high_low_right ? (*s.front_high_low_right ? "1" : "0") : "") + "," + (t && t->person == PersonTruth::Rest ? (s.false_hand ? "1" : "0") : "") + ",";
   } else {
     line += ",,,,,,";
   }

@@ -67,7 +67,11 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
   for (int64_t i = 0; i < frames; i += o.stride) {
     const SyntheticFrame f = world.render(static_cast<double>(i) / fps, i, std::nullopt);
     const int64_t t0 = monotonic_utime();
-    const HandResult r = observer.observe(f.bgr, UserView{f.truth.user_box, std::nullopt, 1});
+    // The face as the tracker hands it over: on the first frame and at each re-check (tracker.face_recheck_frames).
+    const int recheck = std::max(1, rules.tracker.face_recheck_frames);
+    const bool face_frame = i == 0 || (rules.tracker.face_recheck_frames > 0 && i % recheck < o.stride);
+    const HandResult r = observer.observe(
+        f.bgr, UserView{f.truth.user_box, face_frame ? std::optional<cv::Rect2f>(f.truth.face_box) : std::nullopt, 1});
     ms.push_back(static_cast<double>(monotonic_utime() - t0) / 1000.0);
     const int truth = std::clamp(f.truth.expected_kind, 0, 2), got = static_cast<int>(r.kind);
     ++confusion[truth][got];

@@ -35,7 +35,7 @@ TEST(Scenario, BareNameLoadsTheShippedTour) {
 }
 
 TEST(Scenario, EveryShippedScenarioLoads) {
-  for (const char* name : {"tour", "fine-piloting", "closer-further", "idle", "nuisances"}) {
+  for (const char* name : {"tour", "fine-piloting", "closer-further", "idle", "nuisances", "warm-wall", "dark-skin"}) {
     SCOPED_TRACE(name);
     const Scenario s = Scenario::load(name);
     EXPECT_GT(s.duration_s(), 10.0);

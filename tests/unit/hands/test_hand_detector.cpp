@@ -85,10 +85,11 @@ TEST_F(Fixture, MirrorUserPointingToTheirRightGivesNegativeX) {
 
 TEST_F(Fixture, Alg1Lambda2PrefersTheRaisedArm) {
   // A at (30, 60): 110 across, 72 above p_uc. B at (20, 132): 120 across, level with p_uc. Each alone in its
-  // square (F = 1). A filler block of 36 at (181..186, 200..205) makes the count pass and scores ~50.
+  // square (F = 1). A filler block of 36 at (230..235, 140..145) makes the count pass and scores at most
+  // 95 - 1.6 + 18 = 111.4 (113 with λ2 = 0), below both.
   mask.at<uint8_t>(60, 30) = 255;
   mask.at<uint8_t>(132, 20) = 255;
-  fill(181, 200, 6, 6);
+  fill(230, 140, 6, 6);
   // λ2 = 0.2: A = 110 + 14.4 + 0.5 = 124.9 beats B = 120 + 0 + 0.5.
   auto r = run();
   ASSERT_EQ(r.kind, HandKind::Out);

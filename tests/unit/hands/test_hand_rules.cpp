@@ -1,0 +1,120 @@
+// Our rules on top of the paper's Alg. 1 (hands README, "Hands that are hand-shaped and within reach"), on
+// hand-made masks and frames; answers worked out by hand in the comments.
+// Box (100, 100, 80, 160): w = 80, hand square 20, p_uc = (140, 132), shoulders at x 112 and 168 (0.35 w),
+// reach 1.6 w = 128 px, search rectangle x 4..275, y 60..259.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "hands/hand_detector.hpp"
+#include "hands/hand_observer.hpp"
+#include "paths.hpp"
+
+using namespace gpilot;
+
+namespace {
+
+const cv::Rect2f kBox(100, 100, 80, 160);
+const cv::Size kImage(400, 400);
+const cv::Scalar kSkin(90, 120, 170), kBlue(200, 60, 20);  // B, G, R: the committed table says 247 and ~0
+
+struct RulesTest : ::testing::Test {
+  HandsParams params;
+  cv::Mat mask = cv::Mat::zeros(kImage, CV_8UC1);
+  HandResult on_mask() {
+    SkinHistogram h(2);
+    h.add(0, 0, 0, true);
+    h.add(255, 255, 255, false);
+    HandDetector d(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
+    return d.detect_on_mask(mask, {0, 0}, hand_geometry(params, kBox, kImage));
+  }
+  HandResult on_frame(const cv::Mat& frame) {
+    HandDetector d(params, SkinClassifier(SkinModel::load(resolve_project_path(params.skin.model)), params.skin.threshold));
+    return d.detect(frame, kBox);
+  }
+};
+
+}  // namespace
+
+TEST_F(RulesTest, AForearmHangingBesideTheBodyIsNotStretchedOut) {
+  // GIVEN skin at x 92..99, y 190..229, left of the box: from the left shoulder (112, 132) it is 13..20 px out and
+  // 58..97 px down, at most atan(20 / 58) = 19 deg from straight down (< 25)
+  mask(cv::Rect(92, 190, 8, 40)).setTo(1);
+  auto r = on_mask();
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_EQ(r.skin_outside, 0);
+  // WHEN the rule is off THEN the paper's Alg. 1 takes it for a stretched-out hand (320 pixels > 30)
+  params.out_min_angle_deg = 0;
+  r = on_mask();
+  EXPECT_EQ(r.kind, HandKind::Out);
+  EXPECT_EQ(r.skin_outside, 320);
+}
+
+TEST_F(RulesTest, AnArmPointingDownAndOutIsStillOut) {
+  // GIVEN a hand 60 px out and 80 px below the right shoulder (168, 132): 37 deg from straight down (the DOWN arm)
+  mask(cv::Rect(222, 206, 12, 12)).setTo(1);
+  const auto r = on_mask();
+  EXPECT_EQ(r.kind, HandKind::Out);
+  EXPECT_EQ(r.skin_outside, 144);
+  EXPECT_GT(r.vector.x, 0);
+  EXPECT_GT(r.vector.y, 0);
+}
+
+TEST_F(RulesTest, SkinBeyondReachIsNoHand) {
+  // GIVEN skin at x 30..39, y 125..134: 73..82 px from the left shoulder (112, 132)
+  mask(cv::Rect(30, 125, 10, 10)).setTo(1);
+  params.reach_ratio = 0.9;  // 72 px: all of it beyond
+  EXPECT_EQ(on_mask().kind, HandKind::None);
+  params.reach_ratio = 1.1;  // 88 px: all of it within
+  EXPECT_EQ(on_mask().kind, HandKind::Out);
+}
+
+TEST_F(RulesTest, ASkinColouredWallBesideTheUserIsNoHandAndAHandIs) {
+  // GIVEN a blue frame with a skin-coloured wall patch right of the box: 60 x 100 = 6000 px > 4 hand squares (1600)
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(190, 110, 60, 100), kSkin, cv::FILLED);
+  auto r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_EQ(r.blobs_dropped, 1);
+  params.max_blob_hand_areas = 0;  // off: the paper's Alg. 1 points at the wall
+  EXPECT_EQ(on_frame(frame).kind, HandKind::Out);
+  // WHEN a hand-sized patch (15 x 15 = 225 px, the hand square is 400) replaces the wall THEN OUT
+  params.max_blob_hand_areas = 4;
+  frame.setTo(kBlue);
+  cv::rectangle(frame, cv::Rect(230, 120, 15, 15), kSkin, cv::FILLED);
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Out);
+  EXPECT_EQ(r.blobs_dropped, 0);
+}
+
+TEST_F(RulesTest, SkinInsideTheBoxIsNotMeasuredAsAWall) {
+  // GIVEN a bare torso: skin filling the box between the face and legs bands (80 x 72 = 5760 px > 1600)
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(100, 132, 80, 72), kSkin, cv::FILLED);
+  const auto r = on_frame(frame);
+  EXPECT_EQ(r.blobs_dropped, 0);
+  EXPECT_EQ(r.skin_inside, 80 * 72);
+}
+
+TEST(HandObserver, AFaceGivesTheBoxItImpliesAndANewTrackForgetsTheUser) {
+  // GIVEN a face 32 x 32 at (124, 108): the tracker's head-body ratios make the box 88 x 224 at (96, 100)
+  HandsParams p;
+  const SkinModel model = SkinModel::load(resolve_project_path(p.skin.model));
+  HandObserver o(p, model);
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(124, 108, 32, 32), kSkin, cv::FILLED);
+  auto r = o.observe(frame, UserView{kBox, cv::Rect2f(124, 108, 32, 32), 1});
+  EXPECT_EQ(r.geometry.box, cv::Rect(96, 100, 88, 224));
+  EXPECT_EQ(o.adaptation().user_samples, 20 * 11);  // cheek band: x 130..149 (124 + 0.2 and 0.8 of 32, rounded), y 124..134
+  // WHEN the next frame has no face THEN the given box is used and what was learnt stays
+  r = o.observe(frame, UserView{kBox, std::nullopt, 1});
+  EXPECT_EQ(r.geometry.box, cv::Rect(100, 100, 80, 160));
+  EXPECT_EQ(o.adaptation().user_samples, 20 * 11);
+  // WHEN a new track starts THEN it is forgotten
+  o.observe(frame, UserView{kBox, std::nullopt, 2});
+  EXPECT_EQ(o.adaptation().user_samples, 0);
+  // AND with box_from_face off the given box is kept even with a face
+  p.box_from_face = false;
+  HandObserver plain(p, model);
+  EXPECT_EQ(plain.observe(frame, UserView{kBox, cv::Rect2f(124, 108, 32, 32), 1}).geometry.box, cv::Rect(100, 100, 80, 160));
+}
