@@ -93,7 +93,9 @@ std::string check_message(const hand_obs_t& m) {
                     "body_centre", m.body_centre, 2)("vector", m.vector, 2)("hand_box", m.hand_box, 4)
                     .reason,
                 check_box("user_box", m.user_box), check_box("hand_box", m.hand_box),
-                m.hand_skin < 0 || m.skin_outside < 0 || m.skin_inside < 0 ? "negative skin count" : ""});
+                m.hand_skin < 0 || m.skin_outside < 0 || m.skin_inside < 0 ? "negative skin count" : "",
+                m.skin_user_samples < 0 || m.skin_scene_samples < 0 ? "negative skin sample count" : "",
+                !(m.skin_changed >= 0 && m.skin_changed <= 1) ? "skin_changed not in 0..1" : ""});
 }
 
 std::string check_message(const gesture_cmd_t& m) {

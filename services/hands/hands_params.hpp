@@ -92,7 +92,7 @@ struct HandsParams {
                                      //!< box is no hand (a wall, wood; a bare forearm and hand reaching out is ~2)
   double shoulder_half_ratio = 0.35; //!< the shoulders sit this many box widths either side of p_uc
   double reach_ratio = 1.6;          //!< Alg. 1: a hand lies within this many box widths of its shoulder
-  double out_min_angle_deg = 25.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
+  double out_min_angle_deg = 15.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
                                      //!< from its shoulder) or more: a hanging forearm beside the body is not OUT
                                      //!< (the paper's DOWN arm points 30 deg from down)
   // The face the tracker found is the surest reference on real people (a person box may hold stretched-out

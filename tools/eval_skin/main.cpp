@@ -1,5 +1,6 @@
 // gpilot-eval-skin: scores a skin model on labelled data: precision, recall, F1 at the configured threshold
 // (hands.skin.threshold), the best-F1 threshold, the ROC curve (PNG) and its area.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -7,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hands/hands_params.hpp"
+#include "hands/skin_adapter.hpp"
 #include "hands/skin_data.hpp"
 #include "hands/skin_model.hpp"
 #include "paths.hpp"
@@ -45,6 +47,53 @@ void write_roc_png(const std::string& path, const LevelCounts& counts, const Lev
   if (!cv::imwrite(path, img)) throw std::runtime_error("cannot write " + path);
 }
 
+// Pixel counts of a binary classifier against a mask (mask_label: skin, not, ignore).
+struct Confusion {
+  int64_t tp = 0, fp = 0, fn = 0, tn = 0;
+  void add(const SkinClassifier& c, const cv::Mat& bgr, const cv::Mat& mask, const cv::Rect& skip) {
+    for (int y = 0; y < bgr.rows; ++y)
+      for (int x = 0; x < bgr.cols; ++x) {
+        if (skip.contains({x, y})) continue;
+        const MaskLabel label = mask_label(mask.at<uint8_t>(y, x));
+        if (label == MaskLabel::Ignore) continue;
+        const auto& p = bgr.at<cv::Vec3b>(y, x);
+        const bool said = c.is_skin(p[0], p[1], p[2]), truth = label == MaskLabel::Skin;
+        (said ? (truth ? tp : fp) : (truth ? fn : tn)) += 1;
+      }
+  }
+  double precision() const { return tp + fp ? static_cast<double>(tp) / static_cast<double>(tp + fp) : 0; }
+  double recall() const { return tp + fn ? static_cast<double>(tp) / static_cast<double>(tp + fn) : 0; }
+  double f1() const { return precision() + recall() > 0 ? 2 * precision() * recall() / (precision() + recall()) : 0; }
+};
+
+// --adapt on one image: the "face" is a square of side 0.2 x the shorter image side on the skin pixel nearest
+// the skin centroid (where a face detector would hand over the user's skin); the "user box" is the skin's
+// bounding box, the scene everything outside it. Both classifiers are scored on every pixel but the face square.
+void add_adapted(const SkinParams& params, const SkinModel& model, const cv::Mat& bgr, const cv::Mat& mask, Confusion& fixed,
+                 Confusion& adapted, int64_t& faces) {
+  std::vector<cv::Point> skin;
+  for (int y = 0; y < mask.rows; ++y)
+    for (int x = 0; x < mask.cols; ++x)
+      if (mask_label(mask.at<uint8_t>(y, x)) == MaskLabel::Skin) skin.emplace_back(x, y);
+  SkinAdapter adapter(params, model);
+  cv::Rect face;
+  if (!skin.empty()) {
+    cv::Point2d c(0, 0);
+    for (const auto& p : skin) c += cv::Point2d(p);
+    c *= 1.0 / static_cast<double>(skin.size());
+    const auto at = *std::min_element(skin.begin(), skin.end(), [&](const cv::Point& a, const cv::Point& b) {
+      return cv::norm(cv::Point2d(a) - c) < cv::norm(cv::Point2d(b) - c);
+    });
+    const int side = std::max(4, std::min(bgr.cols, bgr.rows) / 5);
+    face = cv::Rect(at.x - side / 2, at.y - side / 2, side, side) & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    adapter.learn_user(bgr, cv::Rect2f(face));
+    adapter.learn_scene(bgr, cv::boundingRect(skin));
+    faces += adapter.user_samples() > 0;
+  }
+  fixed.add(SkinClassifier(model, params.threshold), bgr, mask, face);
+  adapted.add(adapter.classifier(), bgr, mask, face);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -54,7 +103,7 @@ int main(int argc, char** argv) {
                  "file stem; mask 255 = skin, 0 = not, exactly 128 = ignore, other values skin when > 128).");
   std::string pixels, images, masks, model_path, roc_png;
   double threshold = -1;
-  bool json = false;
+  bool json = false, adapt = false;
   auto& app = cli.app();
   app.add_option("--pixels", pixels, "labelled pixel file (UCI layout)")->check(CLI::ExistingFile);
   app.add_option("--images", images, "image folder")->check(CLI::ExistingDirectory);
@@ -63,7 +112,15 @@ int main(int argc, char** argv) {
   app.add_option("--threshold", threshold, "P(skin) threshold (default: hands.skin.threshold of the config)")->check(CLI::Range(0.0, 1.0));
   app.add_option("--roc", roc_png, "write the ROC curve to this PNG");
   app.add_flag("--json", json, "print one JSON object on stdout");
+  app.add_flag("--adapt", adapt,
+               "with --images/--masks: the skin model that learns the user and the scene (hands.skin.adapt), per image:\n"
+               "the user from a face-sized square on the skin nearest its centroid, the scene from outside the skin's\n"
+               "bounding box; precision/recall/F1 of the table alone and adapted on the same pixels (the square excluded)");
   return cli.run(argc, argv, [&](const Config& config) {
+    if (adapt && images.empty()) {
+      std::fprintf(stderr, "gpilot-eval-skin: --adapt needs --images DIR --masks DIR\n");
+      return 2;
+    }
     if (pixels.empty() == images.empty() || images.empty() != masks.empty()) {
       std::fprintf(stderr, "gpilot-eval-skin: give either --pixels FILE or --images DIR --masks DIR\n");
       return 2;
@@ -72,6 +129,35 @@ int main(int argc, char** argv) {
     if (model_path.empty()) model_path = resolve_project_path(params.skin.model);
     if (threshold < 0) threshold = params.skin.threshold;
     const SkinModel model = SkinModel::load(model_path);
+    if (adapt) {
+      SkinParams sp = params.skin;
+      sp.threshold = threshold;
+      sp.adapt.enabled = true;
+      Confusion fixed, adapted;
+      int64_t faces = 0;
+      const auto pairs = pair_images_and_masks(images, masks);
+      for (size_t i = 0; i < pairs.size(); ++i) {
+        cv::Mat bgr, mask;
+        read_pair(pairs[i], bgr, mask);
+        add_adapted(sp, model, bgr, mask, fixed, adapted, faces);
+        if ((i + 1) % 50 == 0 || i + 1 == pairs.size()) std::fprintf(stderr, "\r%zu/%zu images", i + 1, pairs.size());
+      }
+      std::fprintf(stderr, "\n");
+      if (json) {
+        std::printf("{\"model\":\"%s\",\"data\":\"%s\",\"images\":%zu,\"threshold\":%.4f,\"users_learnt\":%lld,"
+                    "\"table\":{\"precision\":%.4f,\"recall\":%.4f,\"f1\":%.4f},"
+                    "\"adapted\":{\"precision\":%.4f,\"recall\":%.4f,\"f1\":%.4f}}\n",
+                    model_path.c_str(), images.c_str(), pairs.size(), threshold, static_cast<long long>(faces), fixed.precision(),
+                    fixed.recall(), fixed.f1(), adapted.precision(), adapted.recall(), adapted.f1());
+      } else {
+        std::printf("model      %s\ndata       %s (%zu images, user learnt on %lld)\nthreshold  %.3f\n\n", model_path.c_str(),
+                    images.c_str(), pairs.size(), static_cast<long long>(faces), threshold);
+        std::printf("%-10s %10s %10s %10s\n", "", "precision", "recall", "F1");
+        std::printf("%-10s %10.4f %10.4f %10.4f\n", "table", fixed.precision(), fixed.recall(), fixed.f1());
+        std::printf("%-10s %10.4f %10.4f %10.4f\n", "adapted", adapted.precision(), adapted.recall(), adapted.f1());
+      }
+      return 0;
+    }
     LevelCounts counts;
     std::string data;
     if (!pixels.empty()) {

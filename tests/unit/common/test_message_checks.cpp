@@ -60,6 +60,16 @@ TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
   hand_obs_t h{};
   h.user_box[2] = -1;
   EXPECT_EQ(check_message(h), "user_box has a negative size");
+  h.user_box[2] = 10;
+  h.skin_changed = 0.25f;
+  EXPECT_EQ(check_message(h), "");
+  h.skin_changed = NAN;
+  EXPECT_EQ(check_message(h), "skin_changed not in 0..1");
+  h.skin_changed = 1.5f;
+  EXPECT_EQ(check_message(h), "skin_changed not in 0..1");
+  h.skin_changed = 0;
+  h.skin_scene_samples = -1;
+  EXPECT_EQ(check_message(h), "negative skin sample count");
 
   tracker_init_t t{};
   t.command = tracker_init_t::COMMAND_SET_BOX;

@@ -37,17 +37,17 @@ struct RulesTest : ::testing::Test {
 }  // namespace
 
 TEST_F(RulesTest, AForearmHangingBesideTheBodyIsNotStretchedOut) {
-  // GIVEN skin at x 92..99, y 190..229, left of the box: from the left shoulder (112, 132) it is 13..20 px out and
-  // 58..97 px down, at most atan(20 / 58) = 19 deg from straight down (< 25)
-  mask(cv::Rect(92, 190, 8, 40)).setTo(1);
+  // GIVEN skin at x 96..99, y 200..239, left of the box: from the left shoulder (112, 132) it is 13..16 px out and
+  // 68..107 px down, at most atan(16 / 68) = 13.2 deg from straight down (< 15)
+  mask(cv::Rect(96, 200, 4, 40)).setTo(1);
   auto r = on_mask();
   EXPECT_EQ(r.kind, HandKind::None);
   EXPECT_EQ(r.skin_outside, 0);
-  // WHEN the rule is off THEN the paper's Alg. 1 takes it for a stretched-out hand (320 pixels > 30)
+  // WHEN the rule is off THEN the paper's Alg. 1 takes it for a stretched-out hand (160 pixels > 30)
   params.out_min_angle_deg = 0;
   r = on_mask();
   EXPECT_EQ(r.kind, HandKind::Out);
-  EXPECT_EQ(r.skin_outside, 320);
+  EXPECT_EQ(r.skin_outside, 160);
 }
 
 TEST_F(RulesTest, AnArmPointingDownAndOutIsStillOut) {
