@@ -66,8 +66,74 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     if (!r.empty()) mask_(r - g.roi.tl()).setTo(0);
   const int dropped = drop_large_blobs(mask_, g);
   HandResult res = run(mask_, g.roi.tl(), g);
+  // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
+  // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
+  int armless = 0;
+  bool torso_known = false;
+  while (res.kind == HandKind::Out && params_.arm_connected) {
+    if (!torso_known) learn_torso_colours(bgr, g), torso_known = true;
+    if (on_an_arm(bgr, g, res.hand)) break;
+    if (++armless < kMaxArmlessCandidates) {
+      cv::floodFill(mask_, res.hand - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
+    } else {
+      const cv::Rect box = g.box - g.roi.tl();
+      cv::Mat keep = cv::Mat::zeros(mask_.size(), CV_8UC1);
+      mask_(box).copyTo(keep(box));
+      mask_ = keep;
+    }
+    res = run(mask_, g.roi.tl(), g);
+  }
   res.blobs_dropped = dropped;
+  res.armless_dropped = armless;
   return res;
+}
+
+void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g) {
+  // The clothing between the face band and the body centre, in the middle 60 % of the box: a sleeve is the same.
+  torso_hist_.assign(kTorsoBins * kTorsoBins * kTorsoBins, 0);
+  torso_pixels_ = 0;
+  const int x0 = g.box.x + g.box.width / 5, x1 = g.box.br().x - g.box.width / 5;
+  const int y0 = std::max(g.box.y, g.face_rows_end), y1 = std::min(g.box.br().y, static_cast<int>(g.body_centre.y));
+  for (int y = y0; y < y1; ++y) {
+    const uint8_t* p = bgr.ptr<uint8_t>(y) + 3 * x0;
+    for (int x = x0; x < x1; ++x, p += 3) {
+      ++torso_hist_[static_cast<size_t>(torso_bin(p))];
+      ++torso_pixels_;
+    }
+  }
+}
+
+bool HandDetector::on_an_arm(const cv::Mat& bgr, const HandGeometry& g, cv::Point hand) {
+  // Arm-coloured pixels of the search rectangle: the skin mask as the detector left it (a skin-coloured wall
+  // dropped, so it cannot join a dome to the user), or a colour with >= 0.5 % of the torso's clothing; closed
+  // by the arm radius so a watch or a shadow at the wrist does not cut the arm.
+  const cv::Mat roi = bgr(g.roi);
+  arm_.create(roi.size(), CV_8UC1);
+  const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / 200);
+  for (int y = 0; y < roi.rows; ++y) {
+    const uint8_t* p = roi.ptr<uint8_t>(y);
+    const uint8_t* m = mask_.ptr<uint8_t>(y);
+    uint8_t* a = arm_.ptr<uint8_t>(y);
+    for (int x = 0; x < roi.cols; ++x, p += 3)
+      a[x] = m[x] || torso_hist_[static_cast<size_t>(torso_bin(p))] >= min_count ? 1 : 0;
+  }
+  const int r = std::max(1, static_cast<int>(std::lround(params_.arm_radius_ratio * g.width)));
+  cv::morphologyEx(arm_, arm_, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, {2 * r + 1, 2 * r + 1}));
+  const cv::Point seed = hand - g.roi.tl();
+  if (!cv::Rect(0, 0, arm_.cols, arm_.rows).contains(seed) || !arm_.at<uint8_t>(seed)) return false;
+  cv::floodFill(arm_, seed, cv::Scalar(2), nullptr, cv::Scalar(), cv::Scalar(), 8);
+  // Reached the torso: the band between the face rows and the body centre, across the box.
+  const cv::Rect torso = cv::Rect(cv::Point(g.box.x, std::max(g.box.y, g.face_rows_end)),
+                                  cv::Point(g.box.br().x, std::min(g.box.br().y, static_cast<int>(g.body_centre.y)))) &
+                         g.roi;
+  if (torso.empty()) return false;
+  const cv::Mat band = arm_(torso - g.roi.tl());
+  for (int y = 0; y < band.rows; ++y) {
+    const uint8_t* a = band.ptr<uint8_t>(y);
+    for (int x = 0; x < band.cols; ++x)
+      if (a[x] == 2) return true;
+  }
+  return false;
 }
 
 int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g) {

@@ -8,9 +8,12 @@
 //           -|p_bc.x - p.x| + λ3 F_skin(p), accepted if |p_bc.x - p.x| < w/5 and F_skin > 30, result p - p_bc.
 // Ours, on top (each a config value, 0 = off): skin components with more than a few hand squares outside the
 // user box are dropped (walls, wood); Alg. 1 counts only skin within reach of a shoulder and, below the shoulder line, far enough
-// from straight down that a hanging forearm is not a stretched-out arm.
+// from straight down that a hanging forearm is not a stretched-out arm; and an OUT hand must hang on an arm:
+// arm-coloured pixels (skin, the user's clothing) join it to the torso (not a sign, a dome, someone's face).
 // Pure: no LCM, no clock. Image axes: x right, y down, pixels.
 #pragma once
+
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -51,6 +54,7 @@ struct HandResult {
   int skin_inside = 0;       //!< skin pixels inside the box after the removals
   int front_candidate_skin = 0;  //!< F_skin of Alg. 2's argmax even when its gates refused it
   int blobs_dropped = 0;         //!< skin components too large for a hand
+  int armless_dropped = 0;       //!< Alg. 1 candidates dropped: no arm from the shoulder to them
 };
 
 class HandDetector {
@@ -73,10 +77,19 @@ class HandDetector {
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
   int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry);
+  void learn_torso_colours(const cv::Mat& bgr, const HandGeometry& geometry);
+  // Whether arm-coloured pixels (skin, the torso's clothing colours) join the hand to the torso.
+  bool on_an_arm(const cv::Mat& bgr, const HandGeometry& geometry, cv::Point hand);
+  static int torso_bin(const uint8_t* bgr) { return ((bgr[0] >> 4) * kTorsoBins + (bgr[1] >> 4)) * kTorsoBins + (bgr[2] >> 4); }
+
+  static constexpr int kTorsoBins = 16;             // per channel, for the clothing colours
+  static constexpr int kMaxArmlessCandidates = 3;   // then Alg. 1 gives up on this frame
 
   HandsParams params_;
   SkinClassifier skin_;
-  cv::Mat mask_, integral_, labels_;
+  cv::Mat mask_, integral_, labels_, arm_;
+  std::vector<int64_t> torso_hist_;
+  int64_t torso_pixels_ = 0;
   cv::Rect last_roi_;
 };
 

@@ -10,6 +10,8 @@ struct SkinAdaptParams {
   bool enabled = true;               //!< false: the trained table alone (the paper)
   double user_weight = 0.5;          //!< a: weight of this user's skin histogram added to the table's P(c|skin)
   double user_rate = 0.3;            //!< each new face blends in at this rate
+  double table_share = 1.0;          //!< share of the table's P(c|skin) kept once a user is learnt (1: the user
+                                     //!< only adds colours; lower: colours unlike the user's face lose weight)
   double scene_weight = 0.6;         //!< b: share of the scene histogram in P(c|not skin)
   double scene_rate = 0.1;           //!< each frame's scene sample blends in at this rate (decay)
   int scene_stride = 4;              //!< the scene is sampled every N-th pixel in x and y
@@ -30,6 +32,7 @@ struct SkinAdaptParams {
     v("enabled", enabled, "learn the user's skin (face) and the scene's colours on top of the trained table");
     v("user_weight", user_weight, 0.0, 1.0, "weight of the user's face histogram added to P(colour|skin)");
     v("user_rate", user_rate, 0.0, 1.0, "blend rate of each new face sample");
+    v("table_share", table_share, 0.0, 1.0, "share of the table's P(colour|skin) kept once a user is learnt");
     v("scene_weight", scene_weight, 0.0, 1.0, "share of the scene histogram in P(colour|not skin)");
     v("scene_rate", scene_rate, 0.0, 1.0, "blend rate of each frame's scene sample (decay)");
     v("scene_stride", scene_stride, 1, 64, "scene sampled every N-th pixel in x and y");
@@ -92,9 +95,12 @@ struct HandsParams {
                                      //!< box is no hand (a wall, wood; a bare forearm and hand reaching out is ~2)
   double shoulder_half_ratio = 0.35; //!< the shoulders sit this many box widths either side of p_uc
   double reach_ratio = 1.6;          //!< Alg. 1: a hand lies within this many box widths of its shoulder
-  double out_min_angle_deg = 15.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
+  double out_min_angle_deg = 25.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
                                      //!< from its shoulder) or more: a hanging forearm beside the body is not OUT
                                      //!< (the paper's DOWN arm points 30 deg from down)
+  bool arm_connected = true;         //!< Alg. 1: the hand must be joined to the torso by skin or the torso's
+                                     //!< clothing colours (an arm, bent or straight, bare or in sleeves)
+  double arm_radius_ratio = 0.03;    //!< gaps up to twice this many box widths along the arm are closed
   // The face the tracker found is the surest reference on real people (a person box may hold stretched-out
   // arms or end at the image edge): when one is given, the box the stage works on is made from it with the
   // tracker's head-body ratios (tracker.body_*_in_faces).
@@ -122,6 +128,8 @@ struct HandsParams {
     v("shoulder_half_ratio", shoulder_half_ratio, 0.0, 2.0, "shoulders this many box widths either side of p_uc");
     v("reach_ratio", reach_ratio, 0.0, 10.0, "Alg. 1: hand within this many box widths of its shoulder (0 = off; ours)");
     v("out_min_angle_deg", out_min_angle_deg, 0.0, 90.0, "Alg. 1: hand below the shoulders this far from straight down at least (0 = off; ours)");
+    v("arm_connected", arm_connected, "Alg. 1: the hand must be joined to the torso by skin or clothing colours (ours)");
+    v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
     v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }
 };

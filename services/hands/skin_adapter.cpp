@@ -99,7 +99,7 @@ void SkinAdapter::rebuild() {
   std::vector<uint8_t> mask(ls.size());
   size_t changed = 0;
   for (size_t i = 0; i < mask.size(); ++i) {
-    const double s = ls[i] + (wu > 0 ? wu * user[i] : 0.0);
+    const double s = wu > 0 ? a.table_share * ls[i] + wu * user[i] : ls[i];
     const double o = (1 - ws) * ln[i] + (ws > 0 ? ws * scene[i] : 0.0);
     const double total = s * ps + o * pn;
     mask[i] = total > 0 && s * ps > t * total ? 1 : 0;

@@ -28,6 +28,7 @@
 #include "child_process.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
+#include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/health_t.hpp"
 #include "gpilot/vehicle_state_t.hpp"
@@ -209,7 +210,8 @@ void camera_to_world(const float c[3], double yaw, double w[3]) {
 
 struct Judged { int checked = 0; std::map<int, int> per_gesture; };
 
-// Judges every true-gesture segment long enough to act on, from a settling time after it starts to its end:
+// Judges every true-gesture segment long enough to act on that the camera can see (a gesture whose arm is out of
+// view is reported, not judged), from a settling time after it starts to its end:
 // 1.2 s for a gesture (half the paper's 60-frame buffers must fill), 2.6 s for rest (the arm comes down, the
 // buffers empty of the last gesture, 1.2 s, and the vehicle stops), 2.7 s for an arm pointing elsewhere
 // right after another (Alg. 3 averages the buffer's non-zero entries: the old direction is gone after 2.4 s).
@@ -225,6 +227,18 @@ Judged judge_gestures(const Recorded& r) {
     if (to - from < kMinJudged) continue;
     const auto a = state_at(r, from), b = state_at(r, to);
     if (!a || !b) continue;
+    // A gesture the camera cannot see (the truth's expected mode is HOVER for most of it: the arm out of view,
+    // e.g. the drone came close and high) asks nothing of the drone: said, not judged.
+    if (seg.gesture != ground_truth_t::GESTURE_REST) {
+      size_t unseen = 0, n = 0;
+      for (const auto* f : seg.frames)
+        if (f->t >= from) ++n, unseen += f->m.expected_mode == gesture_cmd_t::MODE_HOVER;
+      if (2 * unseen > n) {
+        std::fprintf(stderr, "not judged %s %5.1f-%5.1f s: out of the camera's view on %zu of %zu frames\n",
+                     kGestureNames[seg.gesture], (from - r.truth.front().t) * 1e-6, (to - r.truth.front().t) * 1e-6, unseen, n);
+        continue;
+      }
+    }
     const double dn = b->n - a->n, de = b->e - a->e, dd = b->d - a->d;
     const auto& person = seg.frames.front()->m.person_position;
     const double range_a = std::hypot(person[0] - a->n, person[1] - a->e);

@@ -178,4 +178,7 @@ TEST(SkinModel, CommittedModelIsReproducibleFromUci) {
   const SkinModel retrained = SkinModel::train(h, {2.0, ""});
   const SkinModel committed = SkinModel::load(resolve_project_path(HandsParams{}.skin.model));
   EXPECT_EQ(retrained.table(), committed.table());
+  EXPECT_EQ(retrained.skin_likelihood(), committed.skin_likelihood());
+  EXPECT_EQ(retrained.non_likelihood(), committed.non_likelihood());
+  EXPECT_NEAR(retrained.skin_prior(), committed.skin_prior(), 1e-12);
 }
