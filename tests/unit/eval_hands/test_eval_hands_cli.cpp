@@ -1,6 +1,7 @@
 // gpilot-eval-hands --coco run as a program on the shipped data/real_people subset (and, when present, on
 // ../shared/data/real_people): the counts it reports (persons read, skipped, per truth class) must match the
-// annotations. Hand-detection quality figures are printed, not asserted (the stage is being changed).
+// annotations; and the stage's quality on real people may not fall below what it measured when it was made
+// (services/hands/README.md: far from the goals, but no resting person in the shipped subset gets a hand).
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -157,6 +158,10 @@ TEST(EvalHandsCli, GivenTheShippedSubsetWhenRunWithJsonThenTheCountsMatchTheAnno
     expect_counts(j, 17, e);
     expect_consistent(j);
     print_figures(std::string("shipped subset"), j);
+    if (std::string(box) == "annotation") {  // measured: 0 of 4 false hands (the paper's stage: 1), 8 of 15 right
+      EXPECT_EQ(j["rest"].value("false_hand", -1), 0);
+      EXPECT_GE(j.value("kind_accuracy", 0.0), 0.5);
+    }
     // One CSV line per person after the header; one PNG per usable person.
     const std::string csv = slurp(dir / "persons.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 18) << csv;
@@ -179,6 +184,10 @@ TEST(EvalHandsCli, GivenTheSharedSetWhenRunWithJsonThenTheCountsMatchItsLabels) 
     expect_counts(j, read, e);
     expect_consistent(j);
     print_figures(std::string("../shared real_people"), j);
+    if (std::string(box) == "annotation") {  // measured: 6 of 20 false hands (the paper's stage: 13), 44 % right
+      EXPECT_LE(j["rest"].value("false_hand", 99), 7);
+      EXPECT_GE(j.value("kind_accuracy", 0.0), 0.40);
+    }
   }
 }
 

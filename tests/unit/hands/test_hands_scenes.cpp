@@ -1,0 +1,66 @@
+// The hands stage (HandObserver, as gpilot-hands runs it) on the synthetic scenes that defeat a skin table
+// alone: `nuisances` with its background photo as shot, `warm-wall` (a light pine wall 1 m behind a user in
+// short sleeves: 94.7 % of its pixels are skin to the table) and `dark-skin`. True user box; the true face
+// handed over on the first frame and every tracker.face_recheck_frames, as the tracker does. Every 5th frame.
+// Measured (services/hands/README.md): the paper's stage 45-57 %, ours 96-98 %.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "capture/synthetic_world.hpp"
+#include "config.hpp"
+#include "hands/hand_observer.hpp"
+#include "paths.hpp"
+
+using namespace gpilot;
+
+namespace {
+
+double kind_accuracy(const std::string& scenario, const HandsParams& hands) {
+  const Config config;
+  TruthRules rules;
+  rules.tracker = config.section<TrackerParams>("tracker");
+  rules.hands = hands;
+  const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), 1, rules);
+  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), rules.tracker.body());
+  const double fps = world.params().fps;
+  const int frames = static_cast<int>(world.scenario().duration_s() * fps);
+  const int stride = 5, recheck = rules.tracker.face_recheck_frames;
+  int right = 0, scored = 0;
+  for (int i = 0; i < frames; i += stride) {
+    const SyntheticFrame f = world.render(i / fps, i, std::nullopt);
+    const bool face = i == 0 || i % recheck < stride;
+    const HandResult r = observer.observe(f.bgr, UserView{f.truth.user_box, face ? std::optional(f.truth.face_box) : std::nullopt, 1});
+    right += static_cast<int>(r.kind) == std::clamp(f.truth.expected_kind, 0, 2);
+    ++scored;
+  }
+  return static_cast<double>(right) / scored;
+}
+
+HandsParams papers_stage() {
+  HandsParams p;
+  p.skin.adapt.enabled = false;
+  p.max_blob_hand_areas = 0;
+  p.reach_ratio = 0;
+  p.out_min_angle_deg = 0;
+  p.arm_connected = false;
+  p.box_from_face = false;
+  return p;
+}
+
+}  // namespace
+
+class HandsScenes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(HandsScenes, TheAdaptedStageGetsNineInTenWhereTheTableAloneFails) {
+  EXPECT_GE(kind_accuracy(GetParam(), HandsParams{}), 0.90);
+  EXPECT_LE(kind_accuracy(GetParam(), papers_stage()), 0.65);  // the scene does defeat the table alone
+}
+
+INSTANTIATE_TEST_SUITE_P(AsShot, HandsScenes, ::testing::Values("nuisances", "warm-wall", "dark-skin"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
