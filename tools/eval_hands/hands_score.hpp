@@ -40,6 +40,9 @@ PersonScore score_person(const PersonKeypointTruth& truth, const HandResult& res
 
 // Angle between two vectors, degrees 0..180 (0 for a zero vector).
 double angle_between_deg(cv::Point2f a, cv::Point2f b);
+// Median and p-quantile (nearest rank) of a sample; 0 for an empty one.
+double median(std::vector<double> v);
+double percentile(std::vector<double> v, double p);
 
 // Sums over people.
 class HandsScoreboard {

@@ -309,7 +309,6 @@ INSTANTIATE_TEST_SUITE_P(
         Scenario{"closer-further", 45, {G::GESTURE_REST, G::GESTURE_CLOSER, G::GESTURE_FURTHER}},
         Scenario{"idle", 35, {G::GESTURE_REST}},
         Scenario{"nuisances", 70, {G::GESTURE_REST, G::GESTURE_OUT}},
-        Scenario{"warm-wall", 70, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}},
         Scenario{"dark-skin", 70, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}}),
     [](const auto& info) {
       std::string n = info.param.name;
