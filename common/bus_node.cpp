@@ -70,13 +70,18 @@ void BusNode::publish_raw(const std::string& channel, const void* data, size_t s
 
 void BusNode::subscribe_raw(const std::string& channel, RawHandler fn) {
   auto sub = std::make_unique<RawSubscription>();
+  sub->node = this;
   sub->fn = std::move(fn);
   lcm_->subscribeFunction(channel, &BusNode::on_any, sub.get());
   subs_.push_back(std::move(sub));
 }
 
 void BusNode::on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub) {
-  sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime);
+  try {
+    sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime);
+  } catch (const std::exception& e) {  // never through LCM's C dispatch
+    sub->node->stats_.rejected(channel + ": the handler failed on this message: " + e.what());
+  }
 }
 
 int BusNode::drain() {

@@ -1,11 +1,15 @@
 // The LCM side of every gpilot process: typed publish/subscribe with counted rejection of malformed or
 // invalid messages, timers, HEALTH once a second, and a clean stop on SIGINT/SIGTERM.
 //
-// A handler sees only messages that decoded and passed check_message(); anything else is counted in
-// HEALTH (rejected, last_reject_reason) and never reaches the stage.
+// A handler sees only messages that decoded exactly (LCM 1.3.1's generated decoders throw on a negative or
+// zero length: caught; a datagram with bytes after the message is not this message) and passed
+// check_message(); anything else is counted in HEALTH (rejected, last_reject_reason) and never reaches the
+// stage. A handler that throws does not unwind through LCM's C dispatch: the message is rejected with the
+// reason and the process keeps running.
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -19,6 +23,26 @@
 #include "stage_stats.hpp"
 
 namespace gpilot {
+
+// Decodes size bytes as Msg, exactly: "" when they are one whole message, else why not (the decoder threw,
+// failed, or left trailing bytes). Never throws.
+template <class Msg>
+std::string decode_exactly(const void* data, size_t size, Msg& msg) {
+  int used = -1;
+  try {
+    if (size > static_cast<size_t>(INT32_MAX)) return std::to_string(size) + " bytes: too large for one LCM message";
+    used = msg.decode(data, 0, static_cast<int>(size));
+  } catch (const std::exception& e) {
+    return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + ": a length field is out of range (" +
+           e.what() + ")";
+  }
+  if (used < 0)
+    return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + " (truncated, malformed or another type)";
+  if (static_cast<size_t>(used) != size)
+    return std::to_string(size) + " bytes hold a gpilot." + Msg::getTypeName() + " of " + std::to_string(used) +
+           " bytes and trailing bytes";
+  return "";
+}
 
 class BusError : public std::runtime_error {
  public:
@@ -101,6 +125,7 @@ class BusNode {
   };
 
   struct RawSubscription : SubscriptionBase {
+    BusNode* node;
     RawHandler fn;
   };
   static void on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub);
@@ -132,19 +157,19 @@ template <class Msg>
 void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub) {
   BusNode& node = *sub->node;
   Msg msg;
-  if (msg.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) {
-    node.stats_.rejected(channel + ": " + std::to_string(rbuf->data_size) + " bytes do not decode as gpilot." +
-                         Msg::getTypeName() + " (truncated, malformed or another type)");
-    return;
-  }
-  const std::string why = check_message(msg);
+  std::string why = decode_exactly(rbuf->data, rbuf->data_size, msg);
+  if (why.empty()) why = check_message(msg);
   if (!why.empty()) {
     node.stats_.rejected(channel + ": " + why);
     return;
   }
   node.stats_.accepted();
   const int64_t t0 = monotonic_utime();
-  sub->handler(msg, rbuf->recv_utime);
+  try {
+    sub->handler(msg, rbuf->recv_utime);
+  } catch (const std::exception& e) {
+    node.stats_.rejected(channel + ": the handler failed on this message: " + e.what());
+  }
   node.stats_.processing_time(monotonic_utime() - t0);
 }
 
