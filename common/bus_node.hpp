@@ -21,6 +21,7 @@
 #include "clock.hpp"
 #include "message_checks.hpp"
 #include "stage_stats.hpp"
+#include "wire_lengths.hpp"
 
 namespace gpilot {
 
@@ -31,6 +32,8 @@ std::string decode_exactly(const void* data, size_t size, Msg& msg) {
   int used = -1;
   try {
     if (size > static_cast<size_t>(INT32_MAX)) return std::to_string(size) + " bytes: too large for one LCM message";
+    const std::string lengths = size >= 8 ? check_wire_lengths<Msg>(data, size) : std::string();
+    if (!lengths.empty()) return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + ": " + lengths;
     used = msg.decode(data, 0, static_cast<int>(size));
   } catch (const std::exception& e) {
     return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + ": a length field is out of range (" +
