@@ -83,6 +83,25 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     }
     res = run(mask_, g.roi.tl(), g);
   }
+  // A FRONT hand is in front of the body, not a forearm hanging at the torso's edge: a skin component much
+  // taller than wide that reaches below the body centre is dropped, and Alg. 2 looks again (three times).
+  for (int tries = 0; res.kind == HandKind::Front && params_.front_max_upright > 0; ++tries) {
+    cv::Mat copy = mask_.clone();
+    cv::Rect blob;
+    cv::floodFill(copy, res.hand - g.roi.tl(), cv::Scalar(2), &blob, cv::Scalar(), cv::Scalar(), 8);
+    blob += g.roi.tl();
+    if (blob.height <= params_.front_max_upright * blob.width || blob.br().y <= g.body_centre.y) break;
+    ++res.upright_dropped;
+    if (tries + 1 >= kMaxArmlessCandidates) {
+      res = HandResult{};
+      res.geometry = g;
+      break;
+    }
+    const int upright = res.upright_dropped;
+    cv::floodFill(mask_, res.hand - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
+    res = run(mask_, g.roi.tl(), g);
+    res.upright_dropped = upright;
+  }
   res.blobs_dropped = dropped;
   res.armless_dropped = armless;
   return res;

@@ -55,6 +55,7 @@ struct HandResult {
   int front_candidate_skin = 0;  //!< F_skin of Alg. 2's argmax even when its gates refused it
   int blobs_dropped = 0;         //!< skin components too large for a hand
   int armless_dropped = 0;       //!< Alg. 1 candidates dropped: no arm from the shoulder to them
+  int upright_dropped = 0;       //!< Alg. 2 candidates dropped: a forearm hanging at the torso's edge
 };
 
 class HandDetector {

@@ -3,6 +3,10 @@
 // basic_string::_M_replace): caught and rejected with the reason; trailing bytes after a whole message
 // are rejected; a handler that throws rejects its message and the node keeps handling the next ones.
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -196,4 +200,19 @@ TEST(WireLengths, AnImageWhoseSizeSaysTwoGigabytesIsRejectedBeforeAnythingIsAllo
                                                      "an array length of " + std::to_string(size) + " with 4 bytes left");
   }
   EXPECT_EQ(frames, 0);
+}
+
+TEST(WireLengths, EveryLcmtypeWithAStringOrAnArrayHasALayout) {
+  // The .lcm files say which types have variable-length fields: exactly the four with a layout.
+  std::set<std::string> variable;
+  for (const auto& f : std::filesystem::directory_iterator(std::string(GPILOT_SOURCE_DIR) + "/lcmtypes")) {
+    if (f.path().extension() != ".lcm") continue;
+    std::ifstream in(f.path());
+    std::string line;
+    const std::regex field(R"(^\s*(string\s+\w+|\w+\s+\w+\s*\[\s*[A-Za-z_]\w*\s*\])\s*;)");
+    while (std::getline(in, line))
+      if (std::regex_search(line, field)) variable.insert(f.path().stem().string());
+  }
+  EXPECT_EQ(variable, (std::set<std::string>{"flight_control_t", "health_t", "image_t", "tracker_init_t"}))
+      << "a type with a string or a variable array needs its layout in common/wire_lengths.cpp";
 }

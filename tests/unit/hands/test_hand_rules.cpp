@@ -118,3 +118,25 @@ TEST(HandObserver, AFaceGivesTheBoxItImpliesAndANewTrackForgetsTheUser) {
   HandObserver plain(p, model);
   EXPECT_EQ(plain.observe(frame, UserView{kBox, cv::Rect2f(124, 108, 32, 32), 1}).geometry.box, cv::Rect(100, 100, 80, 160));
 }
+
+TEST_F(RulesTest, AForearmHangingAtTheTorsosEdgeIsNotAHandInFront) {
+  // GIVEN skin 8 x 54 at x 152..159, y 150..203 inside the box: its inner edge 12 px from p_bc.x (< w/5 = 16),
+  // 6.75 times taller than wide, reaching below the body centre (y 180): a bare forearm hanging at the torso
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(152, 150, 8, 54), kSkin, cv::FILLED);
+  auto r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_EQ(r.upright_dropped, 1);
+  params.front_max_upright = 0;  // off: the paper's Alg. 2 takes it for a hand in front
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Front);
+  EXPECT_EQ(r.hand.x, 152);
+  // WHEN a compact hand (12 x 12) is in front of the chest instead THEN FRONT, higher
+  params.front_max_upright = 2.5;
+  frame.setTo(kBlue);
+  cv::rectangle(frame, cv::Rect(134, 150, 12, 12), kSkin, cv::FILLED);
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Front);
+  EXPECT_LT(r.vector.y, 0);
+  EXPECT_EQ(r.upright_dropped, 0);
+}

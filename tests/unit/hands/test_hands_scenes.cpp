@@ -45,6 +45,7 @@ HandsParams papers_stage() {
   p.reach_ratio = 0;
   p.out_min_angle_deg = 0;
   p.arm_connected = false;
+  p.front_max_upright = 0;
   p.box_from_face = false;
   return p;
 }
