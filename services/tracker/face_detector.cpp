@@ -14,6 +14,12 @@ namespace gpilot {
 
 cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) { return body_from_face(face, p.body()); }
 
+cv::Rect face_recheck_window(const cv::Rect2d& b, const TrackerParams& p) {
+  const double fw = b.width / p.body_width_in_faces, fh = b.height / p.body_height_in_faces;
+  const double face_top = b.y + p.body_top_in_faces * fh;
+  return cv::Rect(cv::Rect2d(b.x + b.width / 2 - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
+}
+
 FaceDetector::FaceDetector(const TrackerParams& params) : p_(params) {
   const std::string path = resolve_project_path(p_.face.cascade);
   if (!cascade_.load(path))

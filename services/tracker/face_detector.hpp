@@ -20,6 +20,10 @@ struct FaceDetection {
 // face top, its size the head-body ratios of params.
 cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& params);
 
+// Where the face re-check looks for the face of a body box: 3 face widths wide centred on the box, from 0.75
+// face heights above the face top the head-body ratios put there, 2.5 face heights tall (not clipped).
+cv::Rect face_recheck_window(const cv::Rect2d& body, const TrackerParams& params);
+
 class FaceDetector {
  public:
   // Throws std::runtime_error when the cascade file is missing or does not load.

@@ -68,9 +68,8 @@ cv::Rect2d UserTracker::body_box(const cv::Rect2d& window) const {
 UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   frames_since_face_ = 0;
   const cv::Rect2d& b = out_.box;
-  const double fw = b.width / p_.body_width_in_faces, fh = b.height / p_.body_height_in_faces;
-  const double face_top = b.y + p_.body_top_in_faces * fh;
-  const cv::Rect roi(cv::Rect2d(b.x + b.width / 2 - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
+  const double fw = b.width / p_.body_width_in_faces;
+  const cv::Rect roi = face_recheck_window(b, p_);
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   const auto face = faces_.detect(frame, roi);
   if (!face) return in_view ? FaceCheck::Missed : FaceCheck::OutOfView;

@@ -22,12 +22,6 @@ cv::Rect2f to_float(const cv::Rect2d& r) {
 
 const char* box_mode_name(BoxMode m) { return m == BoxMode::Annotation ? "annotation" : "face"; }
 
-cv::Rect face_recheck_window(const cv::Rect2f& b, const TrackerParams& p) {
-  const double fw = b.width / p.body_width_in_faces, fh = b.height / p.body_height_in_faces;
-  const double face_top = b.y + p.body_top_in_faces * fh;
-  return cv::Rect(cv::Rect2d(b.x + b.width / 2 - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
-}
-
 UserViewChooser::UserViewChooser(const TrackerParams& tracker, BoxMode mode) : tracker_(tracker), mode_(mode), faces_(tracker) {}
 
 ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotation_box, const PersonKeypointTruth& truth,
@@ -35,7 +29,7 @@ ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotat
   ChosenView c;
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
   if (mode_ == BoxMode::Annotation) {
-    c.search_window = face_recheck_window(annotation_box, tracker_) & image;
+    c.search_window = face_recheck_window(cv::Rect2d(annotation_box), tracker_) & image;
     if (const auto f = faces_.detect(bgr, c.search_window)) c.face = to_float(f->face);
     else c.note = "no face in the re-check window";
     c.view = UserView{annotation_box, c.face, track_id};

@@ -1,6 +1,6 @@
 // Which user box and face the hands stage is given for one annotated person of a photo:
 //   annotation: the annotation's bbox; face = the largest Haar face in the top part of that box, searched in
-//               the window the tracker's face re-check uses for a box (UserTracker::recheck_face), or none.
+//               the window the tracker's face re-check uses for a box (face_recheck_window), or none.
 //   face:       the body box the tracker would make from this person's face: the largest Haar face in the
 //               head region spanned by the nose/eyes/ears keypoints (their face box grown 2x), accepted if
 //               its centre lies in that face box grown 1.5x; body box = body_from_face(face, tracker params)
@@ -44,10 +44,5 @@ class UserViewChooser {
   BoxMode mode_;
   FaceDetector faces_;
 };
-
-// The tracker's face re-check window for a body box (UserTracker::recheck_face): 3 face widths wide centred on
-// the box, from 0.75 face heights above the expected face top, 2.5 face heights tall; face size from the box by
-// the head-body ratios.
-cv::Rect face_recheck_window(const cv::Rect2f& box, const TrackerParams& tracker);
 
 }  // namespace gpilot
