@@ -29,18 +29,19 @@ namespace gpilot {
 // failed, or left trailing bytes). Never throws.
 template <class Msg>
 std::string decode_exactly(const void* data, size_t size, Msg& msg) {
+  const auto not_a = [&](const std::string& why) {
+    return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + why;
+  };
+  if (size > static_cast<size_t>(INT32_MAX)) return std::to_string(size) + " bytes: too large for one LCM message";
+  const std::string lengths = size >= 8 ? check_wire_lengths<Msg>(data, size) : std::string();
+  if (!lengths.empty()) return not_a(": " + lengths);
   int used = -1;
   try {
-    if (size > static_cast<size_t>(INT32_MAX)) return std::to_string(size) + " bytes: too large for one LCM message";
-    const std::string lengths = size >= 8 ? check_wire_lengths<Msg>(data, size) : std::string();
-    if (!lengths.empty()) return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + ": " + lengths;
     used = msg.decode(data, 0, static_cast<int>(size));
   } catch (const std::exception& e) {
-    return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + ": a length field is out of range (" +
-           e.what() + ")";
+    return not_a(std::string(": a length field is out of range (") + e.what() + ")");
   }
-  if (used < 0)
-    return std::to_string(size) + " bytes do not decode as gpilot." + Msg::getTypeName() + " (truncated, malformed or another type)";
+  if (used < 0) return not_a(" (truncated, malformed or another type)");
   if (static_cast<size_t>(used) != size)
     return std::to_string(size) + " bytes hold a gpilot." + Msg::getTypeName() + " of " + std::to_string(used) +
            " bytes and trailing bytes";

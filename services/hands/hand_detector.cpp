@@ -73,8 +73,8 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
   while (res.kind == HandKind::Out && params_.arm_connected) {
     if (!torso_known) learn_torso_colours(bgr, g), torso_known = true;
     if (on_an_arm(bgr, g, res.hand)) break;
-    if (++armless < kMaxArmlessCandidates) {
-      cv::floodFill(mask_, res.hand - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
+    if (++armless < kMaxDroppedCandidates) {
+      erase_component(g, res.hand);
     } else {
       const cv::Rect box = g.box - g.roi.tl();
       cv::Mat keep = cv::Mat::zeros(mask_.size(), CV_8UC1);
@@ -92,19 +92,23 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     blob += g.roi.tl();
     if (blob.height <= params_.front_max_upright * blob.width || blob.br().y <= g.body_centre.y) break;
     ++res.upright_dropped;
-    if (tries + 1 >= kMaxArmlessCandidates) {
+    if (tries + 1 >= kMaxDroppedCandidates) {
       res = HandResult{};
       res.geometry = g;
       break;
     }
     const int upright = res.upright_dropped;
-    cv::floodFill(mask_, res.hand - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
+    erase_component(g, res.hand);
     res = run(mask_, g.roi.tl(), g);
     res.upright_dropped = upright;
   }
   res.blobs_dropped = dropped;
   res.armless_dropped = armless;
   return res;
+}
+
+void HandDetector::erase_component(const HandGeometry& g, cv::Point pixel) {
+  cv::floodFill(mask_, pixel - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
 }
 
 void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g) {

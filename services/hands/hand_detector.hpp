@@ -78,13 +78,15 @@ class HandDetector {
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
   int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry);
+  // Clears the skin component of mask_ holding an image pixel (a candidate this frame will not take).
+  void erase_component(const HandGeometry& geometry, cv::Point pixel);
   void learn_torso_colours(const cv::Mat& bgr, const HandGeometry& geometry);
   // Whether arm-coloured pixels (skin, the torso's clothing colours) join the hand to the torso.
   bool on_an_arm(const cv::Mat& bgr, const HandGeometry& geometry, cv::Point hand);
   static int torso_bin(const uint8_t* bgr) { return ((bgr[0] >> 4) * kTorsoBins + (bgr[1] >> 4)) * kTorsoBins + (bgr[2] >> 4); }
 
   static constexpr int kTorsoBins = 16;             // per channel, for the clothing colours
-  static constexpr int kMaxArmlessCandidates = 3;   // then Alg. 1 gives up on this frame
+  static constexpr int kMaxDroppedCandidates = 3;   // then the algorithm gives up on this frame
 
   HandsParams params_;
   SkinClassifier skin_;

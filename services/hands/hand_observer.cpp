@@ -9,7 +9,6 @@ HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior, co
 
 void HandObserver::reset() {
   adapter_.reset();
-  adaptation_ = SkinAdaptation{};
   track_id_ = -1;
 }
 
@@ -31,11 +30,7 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
                              cv::Rect(0, 0, bgr.cols, bgr.rows);
     adapter_.learn_scene(bgr, exclude);
   }
-  const HandResult r = detector_.detect(bgr, box, &adapter_.classifier());
-  adaptation_.user_samples = adapter_.user_samples();
-  adaptation_.scene_samples = adapter_.scene_samples();
-  adaptation_.changed_fraction = adapter_.changed_fraction();
-  return r;
+  return detector_.detect(bgr, box, &adapter_.classifier());
 }
 
 }  // namespace gpilot

@@ -43,7 +43,9 @@ class HandObserver {
   // Forgets the user and the scene (the trained table alone again).
   void reset();
 
-  SkinAdaptation adaptation() const { return adaptation_; }
+  SkinAdaptation adaptation() const {
+    return {adapter_.user_samples(), adapter_.scene_samples(), adapter_.changed_fraction()};
+  }
   const cv::Mat& last_mask() const { return detector_.last_mask(); }
   cv::Rect last_roi() const { return detector_.last_roi(); }
   const HandsParams& params() const { return detector_.params(); }
@@ -52,7 +54,6 @@ class HandObserver {
   HandDetector detector_;
   SkinAdapter adapter_;
   BodyProportions body_;
-  SkinAdaptation adaptation_;
   int32_t track_id_ = -1;
 };
 
