@@ -64,6 +64,19 @@ BusNode::BusNode(std::string name, const std::string& url) : name_(std::move(nam
 
 BusNode::~BusNode() = default;
 
+void BusNode::send_encoded(const std::string& channel, size_t size) {
+  lcm_->publish(channel, out_.data(), static_cast<unsigned int>(size));
+}
+
+BusNode::Opened BusNode::open(const std::string&, const lcm::ReceiveBuffer& rbuf) {
+  Opened o;
+  o.data = rbuf.data;
+  o.size = rbuf.data_size;
+  return o;
+}
+
+std::string BusNode::check_stream(const std::string&, int64_t, int64_t, int64_t) { return ""; }
+
 void BusNode::publish_raw(const std::string& channel, const void* data, size_t size) {
   lcm_->publish(channel, data, static_cast<unsigned int>(size));
 }
@@ -98,8 +111,8 @@ void BusNode::every(double period_s, std::function<void()> fn) {
 void BusNode::set_state(int8_t health_state, const std::string& detail) { stats_.set_state(health_state, detail); }
 
 void BusNode::publish_health() {
-  const health_t h = stats_.report(wall_utime(), name_, static_cast<int32_t>(getpid()));
-  lcm_->publish("HEALTH", &h);
+  const health_t h = stats_.report(now(), name_, static_cast<int32_t>(getpid()));
+  send("HEALTH", h);
 }
 
 void BusNode::run_due_timers() {

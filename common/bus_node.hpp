@@ -71,13 +71,18 @@ class BusNode {
   BusNode(const BusNode&) = delete;
   BusNode& operator=(const BusNode&) = delete;
 
-  // handler(msg, receive_utime) runs on the loop thread for each valid message.
+  // handler(msg, receive_utime) runs on the loop thread for each valid message; receive_utime is on the
+  // node's clock (the log's time in replay). queue_capacity > 0 bounds
+  // LCM's queue for this channel (its default is 30): a slow stage then skips the oldest messages instead of
+  // falling behind; LCM drops them before this node sees them, so the stage counts its own gaps (seq).
   template <class Msg>
-  void subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler);
+  void subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler,
+                 int queue_capacity = 0);
 
+  // Encodes msg into a reused buffer and sends it (signed when the node has a bus key).
   template <class Msg>
   void publish(const std::string& channel, const Msg& msg) {
-    lcm_->publish(channel, &msg);
+    send(channel, msg);
     stats_.published();
   }
 
@@ -106,6 +111,11 @@ class BusNode {
   bool spin_once(int timeout_ms);
   void stop();
   bool stopping() const;
+
+  // The node's clock, on the message time base (µs since the epoch): the wall clock live; in replay, the
+  // time of the log event being dispatched (set_log_time), so time checks and stamps replay exactly.
+  int64_t now() const { return log_time_ >= 0 ? log_time_ : wall_utime(); }
+  void set_log_time(int64_t utime) { log_time_ = utime; }
 
   const std::string& name() const { return name_; }
   const std::string& url() const { return url_; }
@@ -137,6 +147,29 @@ class BusNode {
   template <class Msg>
   static void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub);
   void run_due_timers();
+  template <class Msg>
+  void send(const std::string& channel, const Msg& msg) {
+    const int size = msg.getEncodedSize();
+    out_.resize(static_cast<size_t>(size) + kMaxTrailerBytes);
+    msg.encode(out_.data(), 0, size);
+    send_encoded(channel, static_cast<size_t>(size));
+  }
+  void send_encoded(const std::string& channel, size_t size);
+  // The message bytes of a received datagram (after the bus signature, when there is one, is verified and
+  // stripped), or a reason to reject it.
+  struct Opened {
+    const void* data = nullptr;
+    size_t size = 0;
+    std::string why;
+  };
+  Opened open(const std::string& channel, const lcm::ReceiveBuffer& rbuf);
+  // The per-stream rules (seq moves forward, utime near the arrival time): "" or why not.
+  std::string check_stream(const std::string& channel, int64_t utime, int64_t seq, int64_t arrival_utime);
+  int64_t arrival_time(const lcm::ReceiveBuffer& rbuf) const { return log_time_ >= 0 ? log_time_ : rbuf.recv_utime; }
+
+  static constexpr size_t kMaxTrailerBytes = 128;
+  std::vector<uint8_t> out_;
+  int64_t log_time_ = -1;
 
   std::string name_;
   std::string url_;
@@ -148,21 +181,27 @@ class BusNode {
 };
 
 template <class Msg>
-void BusNode::subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler) {
+void BusNode::subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler,
+                        int queue_capacity) {
   auto sub = std::make_unique<TypedSubscription<Msg>>();
   sub->node = this;
   sub->channel = channel;
   sub->handler = std::move(handler);
-  lcm_->subscribeFunction(channel, &BusNode::on_raw<Msg>, sub.get());
+  lcm::Subscription* s = lcm_->subscribeFunction(channel, &BusNode::on_raw<Msg>, sub.get());
+  if (queue_capacity > 0 && s) s->setQueueCapacity(queue_capacity);
   subs_.push_back(std::move(sub));
 }
 
 template <class Msg>
 void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub) {
   BusNode& node = *sub->node;
+  const Opened opened = node.open(channel, *rbuf);
+  std::string why = opened.why;
   Msg msg;
-  std::string why = decode_exactly(rbuf->data, rbuf->data_size, msg);
+  if (why.empty()) why = decode_exactly(opened.data, opened.size, msg);
   if (why.empty()) why = check_message(msg);
+  const int64_t arrival = node.arrival_time(*rbuf);
+  if (why.empty()) why = node.check_stream(channel, msg.utime, msg.seq, arrival);
   if (!why.empty()) {
     node.stats_.rejected(channel + ": " + why);
     return;
@@ -170,7 +209,7 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   node.stats_.accepted();
   const int64_t t0 = monotonic_utime();
   try {
-    sub->handler(msg, rbuf->recv_utime);
+    sub->handler(msg, arrival);
   } catch (const std::exception& e) {
     node.stats_.rejected(channel + ": the handler failed on this message: " + e.what());
   }
