@@ -7,6 +7,7 @@
 #include "decide/decide_params.hpp"
 #include "flight/flight_params.hpp"
 #include "hands/hands_params.hpp"
+#include "image_codec_params.hpp"
 #include "tracker/tracker_params.hpp"
 
 namespace gpilot {
@@ -22,6 +23,7 @@ void for_each_section(F&& f) {
   f("flight", FlightParams{});
   f("sim", SimParams{});
   f("mavlink", MavlinkParams{});
+  f("image", ImageLimits{});
 }
 
 }  // namespace

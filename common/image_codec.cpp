@@ -11,11 +11,53 @@
 
 namespace gpilot {
 
-std::string image_to_mat(const image_t& msg, cv::Mat& out) {
+std::string jpeg_dimensions(const uint8_t* data, size_t size, int& width, int& height) {
+  width = height = 0;
+  if (size < 4 || data[0] != 0xFF || data[1] != 0xD8) return "JPEG data does not start with an SOI marker";
+  size_t pos = 2;
+  // Marker segments by their lengths, as libjpeg reads them; anything else before the frame header (stray
+  // bytes, which libjpeg would skip with a warning) is a rejection: no size is trusted that libjpeg might
+  // read differently.
+  while (pos < size) {
+    if (data[pos] != 0xFF) return "JPEG data has stray bytes before its frame header";
+    while (pos < size && data[pos] == 0xFF) ++pos;  // fill bytes
+    if (pos >= size) break;
+    const uint8_t marker = data[pos++];
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // TEM, RSTn: no length
+    if (marker == 0xD8 || marker == 0xD9 || marker == 0xDA || marker == 0x00)
+      return "JPEG data has no frame header (SOF) before its scan";
+    if (pos + 2 > size) break;
+    const size_t length = (static_cast<size_t>(data[pos]) << 8) | data[pos + 1];  // includes its own 2 bytes
+    if (length < 2 || pos + length > size) return "JPEG marker segment runs past the end of the data";
+    const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (sof) {
+      if (length < 8) return "JPEG frame header (SOF) is too short";
+      height = (data[pos + 3] << 8) | data[pos + 4];
+      width = (data[pos + 5] << 8) | data[pos + 6];
+      if (width == 0 || height == 0) return "JPEG frame header gives no size (a DNL height is not supported)";
+      return "";
+    }
+    pos += length;
+  }
+  return "JPEG data ends before its frame header (SOF)";
+}
+
+std::string image_to_mat(const image_t& msg, cv::Mat& out, const ImageLimits& limits) {
   out.release();
   const std::string why = check_message(msg);
   if (!why.empty()) return why;
+  const auto dims = [](int w, int h) { return std::to_string(w) + "x" + std::to_string(h); };
+  if (msg.width > limits.max_width || msg.height > limits.max_height)
+    return "image is " + dims(msg.width, msg.height) + ", larger than image.max_width x image.max_height (" +
+           dims(limits.max_width, limits.max_height) + ")";
   if (msg.pixel_format == image_t::PIXEL_FORMAT_JPEG) {
+    // The size in the JPEG's header, before any pixel is decoded: a 928-byte datagram claiming 16384x16384
+    // would otherwise cost a second of decoding and 800 MB before the size comparison below refused it.
+    int header_w = 0, header_h = 0;
+    const std::string bad_header = jpeg_dimensions(msg.data.data(), msg.data.size(), header_w, header_h);
+    if (!bad_header.empty()) return bad_header;
+    if (header_w != msg.width || header_h != msg.height)
+      return "JPEG header says " + dims(header_w, header_h) + " but the message says " + dims(msg.width, msg.height);
     cv::Mat decoded;
     try {
       decoded = cv::imdecode(cv::Mat(1, msg.size, CV_8UC1, const_cast<uint8_t*>(msg.data.data())), cv::IMREAD_UNCHANGED);
@@ -26,8 +68,8 @@ std::string image_to_mat(const image_t& msg, cv::Mat& out) {
     if (decoded.depth() != CV_8U || (decoded.channels() != 1 && decoded.channels() != 3))
       return "JPEG decodes to an unsupported pixel type";
     if (decoded.cols != msg.width || decoded.rows != msg.height)
-      return "JPEG decodes to " + std::to_string(decoded.cols) + "x" + std::to_string(decoded.rows) +
-             " but the message says " + std::to_string(msg.width) + "x" + std::to_string(msg.height);
+      return "JPEG decodes to " + dims(decoded.cols, decoded.rows) + " but the message says " +
+             dims(msg.width, msg.height);
     if (decoded.channels() == 1) cv::cvtColor(decoded, decoded, cv::COLOR_GRAY2BGR);
     out = decoded;
     return "";

@@ -2,17 +2,25 @@
 // image yields a reason, never a crash or a Mat that reads past its buffer.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include <opencv2/core.hpp>
 
 #include "gpilot/image_t.hpp"
+#include "image_codec_params.hpp"
 
 namespace gpilot {
 
 // On success out is CV_8UC3 (BGR8, JPEG) or CV_8UC1 (GRAY8) and the result is "". Raw formats are
-// wrapped without a copy: out shares msg.data and must not outlive msg. JPEG is decoded into out.
-std::string image_to_mat(const image_t& msg, cv::Mat& out);
+// wrapped without a copy: out shares msg.data and must not outlive msg. JPEG is decoded into out, only after
+// its header's size matched the message's and both are within limits (nothing is decoded otherwise).
+std::string image_to_mat(const image_t& msg, cv::Mat& out, const ImageLimits& limits = ImageLimits{});
+
+// A baseline/progressive JPEG's size from its first SOF marker, without decoding: "" and width/height set, or
+// why the bytes are not a JPEG whose size can be read (no SOI, a segment past the end, no SOF before SOS).
+std::string jpeg_dimensions(const uint8_t* data, size_t size, int& width, int& height);
 
 // Encodes a CV_8UC3 (BGR) or CV_8UC1 frame. For PIXEL_FORMAT_JPEG a grey frame is stored as grey JPEG.
 // Throws std::invalid_argument for an empty frame or an unsupported type.

@@ -1,6 +1,7 @@
 #include "message_checks.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 
 namespace gpilot {
@@ -39,6 +40,46 @@ std::string check_optional_box_in_image(const char* name, const float* box, int 
   return "";
 }
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// The box of a tracked user in an image_width x image_height image (0: not known, any image): each side at
+// least a pixel and at most kMaxBoxInImages image sizes, its corner at most that far off the image. Finite
+// values are assumed (checked first).
+std::string check_user_box(const char* name, const float* box, int image_width, int image_height) {
+  const double image[2] = {static_cast<double>(image_width > 0 ? image_width : kMaxImageSide),
+                           static_cast<double>(image_height > 0 ? image_height : kMaxImageSide)};
+  const char* corner[2] = {"x", "y"};
+  const char* side[2] = {"width", "height"};
+  const auto where = [&](int i) {
+    return image_width > 0 ? std::to_string(static_cast<int>(image[i])) + " px image" : std::string("any image");
+  };
+  for (int i = 0; i < 2; ++i) {
+    const double s = box[2 + i];
+    if (s < kMinBoxSide) return std::string(name) + " " + side[i] + " " + number(s) + " is below a pixel";
+    if (s > kMaxBoxInImages * image[i])
+      return std::string(name) + " " + side[i] + " " + number(s) + " is beyond " + where(i) + " (" +
+             number(kMaxBoxInImages) + " x)";
+  }
+  for (int i = 0; i < 2; ++i) {
+    const double c = box[i];
+    if (c < -kMaxBoxInImages * image[i] || c > (1 + kMaxBoxInImages) * image[i])
+      return std::string(name) + " " + corner[i] + " " + number(c) + " is far outside " + where(i);
+  }
+  return "";
+}
+
+std::string check_image_size(int width, int height) {
+  if (width < 0 || height < 0) return "negative image size";
+  if (width > kMaxImageSide || height > kMaxImageSide)
+    return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
+           std::to_string(kMaxImageSide) + " pixels a side";
+  return "";
+}
+
 std::string first(std::initializer_list<std::string> reasons) {
   for (const auto& r : reasons)
     if (!r.empty()) return r;
@@ -51,7 +92,8 @@ std::string check_message(const image_t& m) {
   if (m.size < 0 || static_cast<size_t>(m.size) != m.data.size()) return "image size field disagrees with its data";
   if (m.width <= 0 || m.height <= 0)
     return "image has no pixels (" + std::to_string(m.width) + "x" + std::to_string(m.height) + ")";
-  if (m.width > 16384 || m.height > 16384) return "image larger than 16384 pixels a side";
+  if (m.width > kMaxImageSide || m.height > kMaxImageSide)
+    return "image larger than " + std::to_string(kMaxImageSide) + " pixels a side";
   int bpp = 0;
   switch (m.pixel_format) {
     case image_t::PIXEL_FORMAT_GRAY8: bpp = 1; break;
@@ -74,7 +116,8 @@ std::string check_message(const tracker_init_t& m) {
                 Finite()("box", m.box, 4).reason,
                 m.command == tracker_init_t::COMMAND_SET_BOX && (m.box[2] <= 0 || m.box[3] <= 0)
                     ? "manual box has no area"
-                    : ""});
+                    : "",
+                m.command == tracker_init_t::COMMAND_SET_BOX ? check_user_box("box", m.box, 0, 0) : ""});
 }
 
 std::string check_message(const user_track_t& m) {
@@ -82,7 +125,9 @@ std::string check_message(const user_track_t& m) {
                 check_enum("init_source", m.init_source, user_track_t::INIT_NONE, user_track_t::INIT_MANUAL),
                 Finite()("box", m.box, 4)("confidence", m.confidence)("face_box", m.face_box, 4).reason,
                 check_box("box", m.box), check_box("face_box", m.face_box),
-                m.image_width < 0 || m.image_height < 0 ? "negative image size" : "",
+                check_image_size(m.image_width, m.image_height),
+                m.status != user_track_t::STATUS_SEARCHING ? check_user_box("box", m.box, m.image_width, m.image_height)
+                                                           : "",
                 check_optional_box_in_image("face_box", m.face_box, m.image_width, m.image_height)});
 }
 
@@ -93,6 +138,10 @@ std::string check_message(const hand_obs_t& m) {
                     "body_centre", m.body_centre, 2)("vector", m.vector, 2)("hand_box", m.hand_box, 4)
                     .reason,
                 check_box("user_box", m.user_box), check_box("hand_box", m.hand_box),
+                check_image_size(m.image_width, m.image_height),
+                m.track_status != user_track_t::STATUS_SEARCHING
+                    ? check_user_box("user_box", m.user_box, m.image_width, m.image_height)
+                    : "",
                 m.hand_skin < 0 || m.skin_outside < 0 || m.skin_inside < 0 ? "negative skin count" : "",
                 m.skin_user_samples < 0 || m.skin_scene_samples < 0 ? "negative skin sample count" : "",
                 !(m.skin_changed >= 0 && m.skin_changed <= 1) ? "skin_changed not in 0..1" : ""});
@@ -102,6 +151,12 @@ std::string check_message(const gesture_cmd_t& m) {
   return first({check_enum("mode", m.mode, gesture_cmd_t::MODE_HOVER, gesture_cmd_t::MODE_FURTHER),
                 Finite()("direction", m.direction, 3)("user_box_width", m.user_box_width).reason,
                 m.user_box_width < 0 ? "negative user box width" : "",
+                m.user_box_width > 0 && m.user_box_width < kMinBoxSide
+                    ? "user_box_width " + number(m.user_box_width) + " is below a pixel"
+                    : "",
+                m.user_box_width > kMaxBoxInImages * kMaxImageSide
+                    ? "user_box_width " + number(m.user_box_width) + " is beyond any image"
+                    : "",
                 m.n_out < 0 || m.n_front_higher < 0 || m.n_front_lower < 0 || m.buffer_fill < 0
                     ? "negative buffer count"
                     : ""});

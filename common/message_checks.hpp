@@ -17,6 +17,15 @@
 
 namespace gpilot {
 
+// Bounds no camera, tracker or box of ours can pass: values beyond them are hostile or broken, and are
+// rejected before any stage sizes a buffer or divides by them.
+constexpr int kMaxImageSide = 16384;     //!< pixels, a side of any image (and of the image sizes messages name)
+constexpr double kMinBoxSide = 1.0;      //!< pixels: a user box narrower or shorter than a pixel is no user
+//! A user box spans at most this many image widths/heights (close up the body box, 7 face heights, passes the
+//! frame's edges: about 2 image heights for a face a quarter of the image tall), and its corner lies at most
+//! this many image sizes off the image.
+constexpr double kMaxBoxInImages = 4.0;
+
 std::string check_message(const image_t& m);
 std::string check_message(const tracker_init_t& m);
 std::string check_message(const user_track_t& m);

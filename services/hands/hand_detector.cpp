@@ -32,10 +32,15 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   g.shoulder_centre = cv::Point2f(static_cast<float>(x + w / 2), static_cast<float>(y + p.shoulder_centre_ratio * h));
   g.body_centre = cv::Point2f(static_cast<float>(x + w / 2), static_cast<float>(y + p.body_centre_ratio * h));
   g.width = static_cast<float>(w);
-  g.open_radius = static_cast<int>(std::lround(p.skin.open_radius_ratio * w));
-  g.hand_side = std::max(1, static_cast<int>(std::lround(w * p.hand_square_ratio)));
-  g.face_rows_end = static_cast<int>(std::lround(y + p.face_remove_ratio * h));
-  g.legs_rows_begin = static_cast<int>(std::lround(y + h - p.legs_remove_ratio * h));
+  // Sizes taken from the box are capped at what the image holds: beyond that a larger kernel or hand square
+  // changes nothing (each already spans the whole clipped search rectangle), while a hostile 1e6 px box sized
+  // a kernel of gigabytes (hands stalled 5.4 s, +545 MB).
+  const double image_side = std::max(image.width, image.height);
+  g.open_radius = static_cast<int>(std::lround(std::min(p.skin.open_radius_ratio * w, image_side)));
+  g.hand_side = std::max(1, static_cast<int>(std::lround(std::min(w * p.hand_square_ratio, 2 * image_side + 1))));
+  const auto row = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
+  g.face_rows_end = row(y + p.face_remove_ratio * h);
+  g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.valid = g.box.width >= 4 && g.box.height >= 4;
   return g;
 }
@@ -140,7 +145,9 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const HandGeometry& g, cv::Poin
     for (int x = 0; x < roi.cols; ++x, p += 3)
       a[x] = m[x] || torso_hist_[static_cast<size_t>(torso_bin(p))] >= min_count ? 1 : 0;
   }
-  const int r = std::max(1, static_cast<int>(std::lround(params_.arm_radius_ratio * g.width)));
+  // Capped at the search rectangle's size, as the opening radius (hand_geometry): no larger kernel differs.
+  const int r = std::max(1, static_cast<int>(std::lround(std::min<double>(params_.arm_radius_ratio * g.width,
+                                                                          std::max(g.roi.width, g.roi.height)))));
   cv::morphologyEx(arm_, arm_, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, {2 * r + 1, 2 * r + 1}));
   const cv::Point seed = hand - g.roi.tl();
   if (!cv::Rect(0, 0, arm_.cols, arm_.rows).contains(seed) || !arm_.at<uint8_t>(seed)) return false;

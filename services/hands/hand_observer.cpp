@@ -1,5 +1,6 @@
 #include "hand_observer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gpilot {
@@ -25,8 +26,10 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
   const HandGeometry g = hand_geometry(p, box, bgr.size());
   if (g.valid) {
     const double m = p.skin.adapt.scene_margin * box.width;
-    const cv::Rect exclude = cv::Rect(cv::Point(static_cast<int>(std::floor(box.x - m)), static_cast<int>(std::floor(box.y - m))),
-                                      cv::Point(static_cast<int>(std::ceil(box.br().x + m)), static_cast<int>(std::ceil(box.br().y)))) &
+    // Clamped before the conversion to int: a box far beyond the image must not overflow it.
+    const auto px = [](double v) { return static_cast<int>(std::clamp(v, -1e7, 1e7)); };
+    const cv::Rect exclude = cv::Rect(cv::Point(px(std::floor(box.x - m)), px(std::floor(box.y - m))),
+                                      cv::Point(px(std::ceil(box.br().x + m)), px(std::ceil(box.br().y)))) &
                              cv::Rect(0, 0, bgr.cols, bgr.rows);
     adapter_.learn_scene(bgr, exclude);
   }

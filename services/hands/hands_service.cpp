@@ -85,7 +85,8 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   auto& frames_dropped = state->frames_dropped;
   auto& tracks_dropped = state->tracks_dropped;
 
-  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, model_path](std::optional<std::pair<image_t, user_track_t>> pair) {
+  const auto limits = config.section<ImageLimits>("image");
+  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, model_path, limits](std::optional<std::pair<image_t, user_track_t>> pair) {
     for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
       node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
     for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
@@ -93,7 +94,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     if (!pair) return;
     const auto& [frame, track] = *pair;
     cv::Mat bgr;
-    const std::string why = image_to_mat(frame, bgr);
+    const std::string why = image_to_mat(frame, bgr, limits);
     if (!why.empty()) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": " + why);
     if (bgr.type() != CV_8UC3) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8");
     if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))

@@ -53,9 +53,10 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
   auto state = std::make_shared<State>(config.section<gpilot::TrackerParams>("tracker"));
   auto& tracker = state->tracker;
   auto& frame = state->frame;
+  const auto limits = config.section<gpilot::ImageLimits>("image");
 
-  node.subscribe<gpilot::image_t>("CAMERA", [&node, &tracker, &frame](const gpilot::image_t& msg, int64_t) {
-    const std::string why = gpilot::image_to_mat(msg, frame);
+  node.subscribe<gpilot::image_t>("CAMERA", [&node, &tracker, &frame, limits](const gpilot::image_t& msg, int64_t) {
+    const std::string why = gpilot::image_to_mat(msg, frame, limits);
     if (!why.empty()) {
       node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + why);
       return;

@@ -74,16 +74,83 @@ TEST(ImageCodec, BadImagesGiveReasons) {
   image_t jpeg = mat_to_image(pattern(32, 32), 0, 0, image_t::PIXEL_FORMAT_JPEG);
   image_t wrong_dims = jpeg;
   wrong_dims.width = 64;
-  EXPECT_EQ(image_to_mat(wrong_dims, out), "JPEG decodes to 32x32 but the message says 64x32");
+  EXPECT_EQ(image_to_mat(wrong_dims, out), "JPEG header says 32x32 but the message says 64x32");
   image_t garbage = jpeg;
   for (size_t i = 0; i < garbage.data.size(); ++i) garbage.data[i] = static_cast<uint8_t>(i * 31);
-  EXPECT_EQ(image_to_mat(garbage, out), "JPEG data does not decode");
+  EXPECT_EQ(image_to_mat(garbage, out), "JPEG data does not start with an SOI marker");
+  image_t scan_garbage = jpeg;  // header intact, the scan and its end marker destroyed: libjpeg's verdict
+  for (size_t i = scan_garbage.data.size() / 2; i < scan_garbage.data.size(); ++i) scan_garbage.data[i] = 0xFF;
+  EXPECT_EQ(image_to_mat(scan_garbage, out), "JPEG data does not decode");
+  image_t no_frame = jpeg;
+  no_frame.data = {0xFF, 0xD8, 0xFF, 0xDA, 0x00, 0x02, 0xFF, 0xD9};
+  no_frame.size = 8;
+  EXPECT_EQ(image_to_mat(no_frame, out), "JPEG data has no frame header (SOF) before its scan");
   EXPECT_TRUE(out.empty());
   image_t truncated = mat_to_image(pattern(32, 32), 0, 0);
   truncated.data.resize(100);
   truncated.size = 100;
   EXPECT_EQ(image_to_mat(truncated, out), "image data has 100 bytes, 32x32 needs 3072");
   EXPECT_THROW(mat_to_image(cv::Mat(), 0, 0), std::invalid_argument);
+}
+
+// The JPEG bomb: 928 bytes whose frame header says 16384 x 16384 (an 805 MB image). The tracker and
+// the hands stage decoded all of it before comparing sizes (tracker output stopped 1.19 s).
+image_t jpeg_bomb() {
+  image_t m = mat_to_image(pattern(16, 16), 0, 0, image_t::PIXEL_FORMAT_JPEG, 50);
+  std::vector<uint8_t>& d = m.data;
+  for (size_t i = 2; i + 8 < d.size(); ++i)
+    if (d[i] == 0xFF && d[i + 1] == 0xC0) {  // SOF0: FF C0, length, precision, height, width
+      d[i + 5] = 0x40, d[i + 6] = 0x00, d[i + 7] = 0x40, d[i + 8] = 0x00;
+      break;
+    }
+  const size_t pad = 928 - d.size() - 4;  // a comment segment after SOI brings it to 928 bytes
+  std::vector<uint8_t> com = {0xFF, 0xFE, static_cast<uint8_t>((pad + 2) >> 8), static_cast<uint8_t>((pad + 2) & 0xFF)};
+  com.resize(4 + pad, 'x');
+  d.insert(d.begin() + 2, com.begin(), com.end());
+  m.size = static_cast<int32_t>(d.size());
+  m.width = m.height = 16384;
+  return m;
+}
+
+TEST(ImageCodec, JpegBombIsRejectedFromItsHeader) {
+  const image_t bomb = jpeg_bomb();
+  ASSERT_EQ(bomb.size, 928);
+  int w = 0, h = 0;
+  ASSERT_EQ(jpeg_dimensions(bomb.data.data(), bomb.data.size(), w, h), "");
+  EXPECT_EQ(w, 16384);
+  EXPECT_EQ(h, 16384);
+  cv::Mat out;
+  // Claimed honestly: beyond the configured maximum, before any pixel is decoded.
+  EXPECT_EQ(image_to_mat(bomb, out), "image is 16384x16384, larger than image.max_width x image.max_height (1920x1080)");
+  // Claimed as a small frame: the header disagrees, nothing is decoded.
+  image_t lying = bomb;
+  lying.width = 640;
+  lying.height = 480;
+  EXPECT_EQ(image_to_mat(lying, out), "JPEG header says 16384x16384 but the message says 640x480");
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(ImageCodec, LimitsApplyToRawFramesToo) {
+  const image_t msg = mat_to_image(pattern(64, 48), 0, 0);
+  cv::Mat out;
+  ImageLimits small;
+  small.max_width = 32;
+  EXPECT_EQ(image_to_mat(msg, out, small), "image is 64x48, larger than image.max_width x image.max_height (32x1080)");
+  EXPECT_EQ(image_to_mat(msg, out), "");
+}
+
+TEST(ImageCodec, JpegDimensionsWalkTheMarkerSegments) {
+  const image_t jpeg = mat_to_image(pattern(40, 24), 0, 0, image_t::PIXEL_FORMAT_JPEG);
+  int w = 0, h = 0;
+  ASSERT_EQ(jpeg_dimensions(jpeg.data.data(), jpeg.data.size(), w, h), "");
+  EXPECT_EQ(w, 40);
+  EXPECT_EQ(h, 24);
+  // Cut inside the first segment after SOI (APP0, 16 bytes + marker): its length runs past the end.
+  EXPECT_EQ(jpeg_dimensions(jpeg.data.data(), 10, w, h), "JPEG marker segment runs past the end of the data");
+  const uint8_t stray[] = {0xFF, 0xD8, 0x00, 0xFF, 0xC0};
+  EXPECT_EQ(jpeg_dimensions(stray, sizeof stray, w, h), "JPEG data has stray bytes before its frame header");
+  const uint8_t dnl[] = {0xFF, 0xD8, 0xFF, 0xC0, 0x00, 0x0B, 8, 0, 0, 0, 16, 1, 1, 0x11, 0};
+  EXPECT_EQ(jpeg_dimensions(dnl, sizeof dnl, w, h), "JPEG frame header gives no size (a DNL height is not supported)");
 }
 
 }  // namespace

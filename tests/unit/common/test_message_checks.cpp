@@ -83,6 +83,8 @@ TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
   t.status = user_track_t::STATUS_TRACKING;
   t.image_width = 640;
   t.image_height = 480;
+  const float body[4] = {100, 50, 200, 400};
+  std::copy(body, body + 4, t.box);
   // GIVEN no face in this frame (all zero): fine
   EXPECT_EQ(check_message(t), "");
   // and a face inside the image, up to its edges: fine
@@ -115,6 +117,70 @@ TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
   t.image_width = 0;  // a face with no image size to be inside
   t.face_box[0] = 0;
   EXPECT_EQ(check_message(t), "face_box is outside the 0x480 image");
+}
+
+// The finite but absurd values, each rejected by its field before any stage sizes or divides by it.
+TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
+  user_track_t t{};
+  t.status = user_track_t::STATUS_TRACKING;
+  t.image_width = 640;
+  t.image_height = 480;
+  const float body[4] = {100, 50, 200, 400};
+  std::copy(body, body + 4, t.box);
+  EXPECT_EQ(check_message(t), "");
+  // A body box passing the frame's edges close up (2.5 image heights, corner above the image): fine
+  t.box[1] = -300, t.box[3] = 1200;
+  EXPECT_EQ(check_message(t), "");
+  // The box of 1e6 px sent ahead of a frame (hands stalled 5.4 s, +545 MB)
+  t.box[2] = 1e6f, t.box[3] = 1e6f;
+  EXPECT_EQ(check_message(t), "box width 1e+06 is beyond 640 px image (4 x)");
+  t.box[2] = 200;
+  EXPECT_EQ(check_message(t), "box height 1e+06 is beyond 480 px image (4 x)");
+  // A box width of 1e-45 (a yaw of -0.16 rad/s was flown on it)
+  std::copy(body, body + 4, t.box);
+  t.box[2] = 1e-45f;
+  EXPECT_EQ(check_message(t), "box width 1.4013e-45 is below a pixel");
+  std::copy(body, body + 4, t.box);
+  t.box[0] = 1e9f;
+  EXPECT_EQ(check_message(t), "box x 1e+09 is far outside 640 px image");
+  // While searching the box means nothing (the tracker sends zeros): not checked
+  t.status = user_track_t::STATUS_SEARCHING;
+  EXPECT_EQ(check_message(t), "");
+  t.image_width = 16385;
+  EXPECT_EQ(check_message(t), "image size 16385x480 is larger than 16384 pixels a side");
+
+  // A command with user_box_width 3.4e38 (a sideways command flown at 0.15 m/s) or 1e-45
+  gesture_cmd_t g{};
+  g.mode = gesture_cmd_t::MODE_FINE;
+  g.direction[0] = 0.5f;
+  g.user_box_width = 120;
+  EXPECT_EQ(check_message(g), "");
+  g.user_box_width = 3.4e38f;
+  EXPECT_EQ(check_message(g), "user_box_width 3.4e+38 is beyond any image");
+  g.user_box_width = 1e-45f;
+  EXPECT_EQ(check_message(g), "user_box_width 1.4013e-45 is below a pixel");
+  g.user_box_width = 0;  // no box (HOVER while searching)
+  EXPECT_EQ(check_message(g), "");
+
+  // A hand observation carries the track's box: the same rules while the track is not searching
+  hand_obs_t h{};
+  h.track_status = user_track_t::STATUS_TRACKING;
+  h.image_width = 640;
+  h.image_height = 480;
+  std::copy(body, body + 4, h.user_box);
+  EXPECT_EQ(check_message(h), "");
+  h.user_box[2] = 1e-45f;
+  EXPECT_EQ(check_message(h), "user_box width 1.4013e-45 is below a pixel");
+
+  // A manual box: at least a pixel, at most 4 of the largest image
+  tracker_init_t i{};
+  i.command = tracker_init_t::COMMAND_SET_BOX;
+  std::copy(body, body + 4, i.box);
+  EXPECT_EQ(check_message(i), "");
+  i.box[3] = 1e-45f;
+  EXPECT_EQ(check_message(i), "box height 1.4013e-45 is below a pixel");
+  i.box[3] = 1e6f;
+  EXPECT_EQ(check_message(i), "box height 1e+06 is beyond any image (4 x)");
 }
 
 }  // namespace

@@ -181,6 +181,26 @@ TEST(HandGeometry, BadBoxesAreInvalid) {
   EXPECT_EQ(d.detect(frame, {1000, 1000, 50, 50}).kind, HandKind::None);
 }
 
+// The USER_TRACK box of 1e6 px (hands stalled 5.4 s, +545 MB): the sizes taken from the box are capped
+// at the image, where a larger kernel or square changes nothing, so the frame costs what any frame costs.
+TEST(HandGeometry, AHugeBoxSizesNothingBeyondTheImage) {
+  HandsParams p;
+  const HandGeometry g = hand_geometry(p, {0, 0, 1e6f, 1e6f}, kImage);
+  ASSERT_TRUE(g.valid);
+  EXPECT_EQ(g.box, cv::Rect(0, 0, 400, 400));
+  EXPECT_EQ(g.roi, cv::Rect(0, 0, 400, 400));
+  EXPECT_EQ(g.open_radius, 400);    // 0.025 x 1e6 = 25000 uncapped
+  EXPECT_EQ(g.hand_side, 801);      // 250000 uncapped
+  EXPECT_FLOAT_EQ(g.width, 1e6f);   // w itself is the box's (the vector is divided by it)
+  const HandGeometry normal = hand_geometry(p, kBox, kImage);
+  EXPECT_EQ(normal.open_radius, 2);  // a real box is not touched: round(0.025 x 80)
+  EXPECT_EQ(normal.hand_side, 20);
+  HandDetector d(p, any_classifier());
+  cv::Mat frame(kImage, CV_8UC3, cv::Scalar(0, 0, 0));  // all skin for this classifier
+  EXPECT_EQ(d.detect(frame, {0, 0, 1e6f, 1e6f}).kind, HandKind::None);
+  EXPECT_EQ(d.last_mask().size(), cv::Size(400, 400));
+}
+
 TEST(HandDetector, WholeStageRemovesFaceAndLegsAndFindsTheArm) {
   // GIVEN the committed model, a blue frame and a skin-coloured person drawn into the box (100,100,80,160).
   HandsParams p;
