@@ -1,7 +1,9 @@
 // gpilot-eval-tracker: runs our tracker (and with --compare OpenCV's CSRT, KCF, legacy MOSSE and dlib's
 // correlation_tracker) over one sequence, lock-step on the same frames, and reports OTB's success AUC,
-// precision at 20 px, mean IoU, frames lost and the trackers' own frames per second.
+// precision at 20 px, mean IoU, frames lost and the trackers' own frames per second. Frames whose truth is
+// UAV123's NaN line (target not visible) are not scored; each tracker's behaviour there is reported instead.
 // Input: an OTB folder (img/ + groundtruth_rect.txt or init_rect.txt) or --log with CAMERA + GROUND_TRUTH.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -56,6 +58,8 @@ class Runner {
   int64_t update_us = 0;
   int updates = 0;
   std::vector<double> ious, errors, psr;
+  std::vector<FrameVerdict> verdicts;  //!< every frame after the start, for the absent-target report
+  std::string state;                   //!< this frame's state as the tracker names it (for --trace)
 
  private:
   std::string name_;
@@ -71,6 +75,7 @@ class UserTrackerRunner : public Runner {
   std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
     const TrackOutput o = t_.process(frame);
     psr.push_back(o.confidence);
+    state = o.status == TrackStatus::kTracking ? "tracking" : o.status == TrackStatus::kLost ? "lost" : "searching";
     if (o.status != TrackStatus::kTracking) return std::nullopt;
     return o.box;
   }
@@ -163,7 +168,14 @@ struct Result {
   int lost = 0;
   double fps = 0, ms = 0, psr_min = 0, psr_mean = 0;
   cv::Rect2d final_box;
+  AbsenceBehaviour absence;
 };
+
+std::string int_list(const std::vector<int>& v) {
+  std::string s;
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
+  return s;
+}
 
 std::string result_fields(const Result& r) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -172,13 +184,15 @@ std::string result_fields(const Result& r) {
     << ", \"precision_20px\": " << num(r.has_truth ? r.scores.precision_20px : nan)
     << ", \"mean_iou\": " << num(r.has_truth ? r.scores.mean_iou : nan) << ", \"frames_lost\": " << r.lost
     << ", \"fps\": " << num(r.fps, 1) << ", \"ms_per_frame\": " << num(r.ms, 3) << ", \"final_box\": [" << num(r.final_box.x, 1)
-    << ", " << num(r.final_box.y, 1) << ", " << num(r.final_box.width, 1) << ", " << num(r.final_box.height, 1) << "]";
+    << ", " << num(r.final_box.y, 1) << ", " << num(r.final_box.width, 1) << ", " << num(r.final_box.height, 1) << "]"
+    << ", \"absent_frames\": " << r.absence.absent_frames << ", \"absent_reported_lost\": " << r.absence.reported_lost
+    << ", \"refound_after\": [" << int_list(r.absence.refound_after) << "]";
   return s.str();
 }
 
 int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path,
              const std::string& synthetic, bool auto_init,
-             bool compare, bool json, const std::string& plot, int threads) {
+             bool compare, bool json, const std::string& plot, const std::string& trace_path, int threads) {
   cv::setNumThreads(threads);
   const auto params = config.section<TrackerParams>("tracker");
   std::unique_ptr<FrameSource> src;
@@ -208,6 +222,14 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
 #endif
   }
 
+  FILE* trace = nullptr;
+  if (!trace_path.empty()) {
+    trace = std::fopen(trace_path.c_str(), "w");
+    if (!trace) throw std::runtime_error(trace_path + ": cannot write the trace");
+    std::fprintf(trace, "frame,truth_x,truth_y,truth_w,truth_h,absent");
+    for (size_t i = 0; i < runners.size(); ++i) std::fprintf(trace, ",t%zu_x,t%zu_y,t%zu_w,t%zu_h,t%zu_box,t%zu_iou", i, i, i, i, i, i);
+    std::fprintf(trace, ",ours_state,ours_psr\n");
+  }
   std::optional<FaceDetector> faces;
   if (auto_init) faces.emplace(params);
   std::string init_how = auto_init ? "face" : "ground_truth";
@@ -233,7 +255,7 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
           r->started = true;
         }
       }
-      if (f.truth) {
+      if (f.truth && !f.absent) {
         ++truth_frames;
         for (auto& r : runners) {
           r->ious.push_back(box ? iou(*box, *f.truth) : 0.0);
@@ -242,7 +264,13 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
       }
       continue;
     }
+    // A frame whose truth says the target is not visible is not scored (UAV123's toolkit does the same);
+    // how each tracker behaves there is reported apart (AbsenceBehaviour).
     if (f.truth) ++truth_frames;
+    if (trace) {
+      const cv::Rect2d t = f.truth.value_or(cv::Rect2d());
+      std::fprintf(trace, "%d,%.1f,%.1f,%.1f,%.1f,%d", frames, t.x, t.y, t.width, t.height, f.absent ? 1 : 0);
+    }
     for (auto& r : runners) {
       const int64_t t0 = thread_cpu_utime();
       const auto box = r->update(f.image);
@@ -252,12 +280,21 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
         r->last = *box;
       else
         ++r->lost;
+      FrameVerdict v;
+      v.absent = f.absent;
+      v.reported = box.has_value();
       if (f.truth) {
-        r->ious.push_back(box ? iou(*box, *f.truth) : (r->last.area() > 0 ? iou(r->last, *f.truth) : 0.0));
+        v.iou = box ? iou(*box, *f.truth) : (r->last.area() > 0 ? iou(r->last, *f.truth) : 0.0);
+        r->ious.push_back(v.iou);
         r->errors.push_back(centre_error(r->last, *f.truth));
       }
+      r->verdicts.push_back(v);
+      if (trace)
+        std::fprintf(trace, ",%.1f,%.1f,%.1f,%.1f,%d,%.3f", r->last.x, r->last.y, r->last.width, r->last.height, box ? 1 : 0, v.iou);
     }
+    if (trace) std::fprintf(trace, ",%s,%.2f\n", runners[0]->state.c_str(), runners[0]->psr.empty() ? 0.0 : runners[0]->psr.back());
   }
+  if (trace) std::fclose(trace);
   if (frames == 0) throw std::runtime_error("the sequence has no frames");
   if (init_frame < 0) throw std::runtime_error("no face found in any frame (--auto-init)");
 
@@ -271,6 +308,7 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
     res.ms = r->updates ? r->update_us / 1000.0 / (r->updates + 1) : 0.0;  // + the init frame
     res.fps = res.ms > 0 ? 1000.0 / res.ms : 0.0;
     res.final_box = r->last;
+    res.absence = absence_behaviour(r->verdicts);
     if (!r->psr.empty()) {
       res.psr_min = *std::min_element(r->psr.begin(), r->psr.end());
       for (double v : r->psr) res.psr_mean += v / static_cast<double>(r->psr.size());
@@ -295,8 +333,11 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
     std::printf("]}\n");
     return 0;
   }
-  std::printf("%s: %d frames (%d with ground truth), initialised from %s at frame %d, %d OpenCV thread(s)\n\n",
+  std::printf("%s: %d frames (%d with ground truth), initialised from %s at frame %d, %d OpenCV thread(s)\n",
               src->name().c_str(), frames, truth_frames, init_how.c_str(), init_frame, threads);
+  if (ours.absence.absent_frames > 0)
+    std::printf("%d frames where the truth says the target is not visible (NaN): not scored\n", ours.absence.absent_frames);
+  std::printf("\n");
   std::printf("%-26s %8s %9s %9s %6s %9s %9s\n", "tracker", "AUC", "prec@20", "mean IoU", "lost", "fps", "ms/frame");
   for (const auto& r : results)
     std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f   final box %.0f,%.0f %.0fx%.0f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
@@ -304,6 +345,13 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
                 r.lost, r.fps, r.ms, r.final_box.x, r.final_box.y, r.final_box.width, r.final_box.height);
   std::printf("\nours: PSR min %.2f, mean %.2f; final box %.1f %.1f %.1f %.1f\n", ours.psr_min, ours.psr_mean,
               ours.final_box.x, ours.final_box.y, ours.final_box.width, ours.final_box.height);
+  if (ours.absence.absent_frames > 0) {
+    std::printf("\nwhile the target was not visible (%d frames), and after it came back (visible frames until IoU >= 0.5;"
+                " -1: never):\n", ours.absence.absent_frames);
+    for (const auto& r : results)
+      std::printf("  %-26s reported lost on %3d of %d; re-found after [%s]\n", r.name.c_str(), r.absence.reported_lost,
+                  r.absence.absent_frames, int_list(r.absence.refound_after).c_str());
+  }
   if (results.size() > 2 && ours.has_truth) {
     std::printf("\n%s against the anchors:\n", ours.name.c_str());
     for (size_t i = 2; i < results.size(); ++i) {
@@ -323,7 +371,7 @@ int main(int argc, char** argv) {
   gpilot::ServiceCli cli("gpilot-eval-tracker",
                          "Tracker evaluation on an OTB sequence folder or an LCM log (CAMERA + GROUND_TRUTH):\n"
                          "success AUC, precision at 20 px, mean IoU, frames lost, frames per second.");
-  std::string seq, log, plot, synthetic;
+  std::string seq, log, plot, synthetic, trace;
   bool auto_init = false, compare = false, json = false;
   int threads = 1;
   auto& app = cli.app();
@@ -334,12 +382,13 @@ int main(int argc, char** argv) {
   app.add_flag("--compare", compare, "also run OpenCV CSRT, KCF, MOSSE and dlib correlation_tracker on the same frames");
   app.add_flag("--json", json, "print one JSON object on stdout");
   app.add_option("--plot", plot, "write the success plot to this PNG");
+  app.add_option("--trace", trace, "write every frame's truth, each tracker's box and IoU, and our state and PSR to this CSV");
   app.add_option("--threads", threads, "OpenCV threads (default 1: the cost on one core; times are thread CPU time)");
   return cli.run(argc, argv, [&](const gpilot::Config& config) {
     if (!seq.empty() + !log.empty() + !synthetic.empty() != 1) {
       std::fprintf(stderr, "gpilot-eval-tracker: give one of: a sequence folder, --log, --synthetic\n");
       return 2;
     }
-    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, threads);
+    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads);
   });
 }

@@ -42,6 +42,33 @@ TrackScores score(const std::vector<double>& ious, const std::vector<double>& er
   return s;
 }
 
+AbsenceBehaviour absence_behaviour(const std::vector<FrameVerdict>& frames, double refound_iou) {
+  AbsenceBehaviour b;
+  int waiting = -1;  // visible frames since the last reappearance not yet re-found; -1: none pending
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const FrameVerdict& f = frames[i];
+    if (f.absent) {
+      ++b.absent_frames;
+      if (!f.reported) ++b.reported_lost;
+      if (i + 1 < frames.size() && !frames[i + 1].absent) {
+        b.refound_after.push_back(-1);
+        waiting = 0;
+      } else {
+        waiting = -1;
+      }
+      continue;
+    }
+    if (waiting < 0) continue;
+    if (f.reported && f.iou >= refound_iou) {
+      b.refound_after.back() = waiting;
+      waiting = -1;
+    } else {
+      ++waiting;
+    }
+  }
+  return b;
+}
+
 void write_success_plot(const std::string& path, const std::string& title, const std::vector<PlotCurve>& curves) {
   const int W = 720, H = 520, L = 70, R = 260, T = 50, B = 60;
   cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));

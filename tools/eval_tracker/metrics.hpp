@@ -24,6 +24,22 @@ struct TrackScores {
 // ious and errors: one per frame with ground truth (a frame without a box: IoU 0, error infinite).
 TrackScores score(const std::vector<double>& ious, const std::vector<double>& errors);
 
+// How a tracker behaved where the truth says the target is not visible (UAV123's NaN frames): these frames
+// are not scored; what counts there is whether the tracker said so and whether it found the target again.
+struct FrameVerdict {
+  bool absent = false;    //!< the truth marks the target as not visible
+  bool reported = false;  //!< the tracker gave a box (false: it reported the target lost)
+  double iou = 0.0;       //!< IoU with the truth on a visible frame (the last box when none was reported)
+};
+struct AbsenceBehaviour {
+  int absent_frames = 0;
+  int reported_lost = 0;            //!< absent frames on which the tracker reported no box
+  //! Per reappearance (an absent run followed by a visible frame): visible frames until the first with
+  //! IoU >= refound_iou counting from 0 (0: on the first visible frame), -1 if never before the end.
+  std::vector<int> refound_after;
+};
+AbsenceBehaviour absence_behaviour(const std::vector<FrameVerdict>& frames, double refound_iou = 0.5);
+
 struct PlotCurve {
   std::string label;
   std::vector<double> success;

@@ -2,6 +2,7 @@
 #include "sequence.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -22,10 +23,28 @@
 namespace gpilot {
 namespace fs = std::filesystem;
 
-std::optional<cv::Rect2d> parse_box(const std::string& line) {
+namespace {
+std::istringstream fields(const std::string& line) {
   std::string s = line;
   std::replace_if(s.begin(), s.end(), [](char c) { return c == ',' || c == '\t'; }, ' ');
-  std::istringstream in(s);
+  return std::istringstream(s);
+}
+}  // namespace
+
+bool is_absent_line(const std::string& line) {
+  std::istringstream in = fields(line);
+  std::string w;
+  int n = 0;
+  while (in >> w) {
+    std::transform(w.begin(), w.end(), w.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (w != "nan") return false;
+    ++n;
+  }
+  return n == 4;
+}
+
+std::optional<cv::Rect2d> parse_box(const std::string& line) {
+  std::istringstream in = fields(line);
   double v[4];
   for (double& x : v)
     if (!(in >> x) || !std::isfinite(x)) return std::nullopt;
@@ -55,6 +74,10 @@ class OtbSource : public FrameSource {
     while (std::getline(in, line)) {
       ++n;
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      if (is_absent_line(line)) {
+        boxes_.push_back(std::nullopt);
+        continue;
+      }
       auto b = parse_box(line);
       if (!b) throw std::runtime_error((otb ? gt : init).string() + ":" + std::to_string(n) + ": not a box: " + line);
       if (otb) {
@@ -69,7 +92,8 @@ class OtbSource : public FrameSource {
     if (i_ >= files_.size()) return false;
     out.image = cv::imread(files_[i_], cv::IMREAD_COLOR);
     if (out.image.empty()) throw std::runtime_error(files_[i_] + ": does not decode");
-    out.truth = i_ < boxes_.size() ? std::optional<cv::Rect2d>(boxes_[i_]) : std::nullopt;
+    out.truth = i_ < boxes_.size() ? boxes_[i_] : std::nullopt;
+    out.absent = i_ < boxes_.size() && !boxes_[i_];
     ++i_;
     return true;
   }
@@ -78,7 +102,7 @@ class OtbSource : public FrameSource {
  private:
   std::string dir_;
   std::vector<std::string> files_;
-  std::vector<cv::Rect2d> boxes_;
+  std::vector<std::optional<cv::Rect2d>> boxes_;  //!< none: the target is not visible (a NaN line)
   size_t i_ = 0;
 };
 
@@ -117,6 +141,7 @@ class LogSource : public FrameSource {
     const auto it = frames_.begin();
     out.image = it->second;
     out.truth = has_truth ? std::optional<cv::Rect2d>(truths_[it->first]) : std::nullopt;
+    out.absent = false;
     truths_.erase(it->first);
     frames_.erase(it);
     return true;
@@ -138,6 +163,7 @@ class SyntheticSource : public FrameSource {
     const SyntheticFrame f = world_.render(static_cast<double>(i_) / world_.params().fps, i_, std::nullopt);
     out.image = f.bgr;
     out.truth = cv::Rect2d(f.truth.user_box);
+    out.absent = false;
     ++i_;
     return true;
   }

@@ -16,6 +16,9 @@ namespace gpilot {
 struct EvalFrame {
   cv::Mat image;                    //!< BGR
   std::optional<cv::Rect2d> truth;  //!< 0-based x, y, w, h, pixels; none where the sequence has none
+  //! The truth says the target is not visible in this frame (UAV123's "NaN,NaN,NaN,NaN" line): the frame is
+  //! left out of the scores, as UAV123's toolkit does, and the tracker's behaviour there reported apart.
+  bool absent = false;
 };
 
 class FrameSource {
@@ -38,5 +41,7 @@ std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario);
 
 // "x,y,w,h" (commas, tabs or spaces); none if malformed or w, h <= 0.
 std::optional<cv::Rect2d> parse_box(const std::string& line);
+// True for UAV123's line of a frame without a visible target: four fields, all NaN.
+bool is_absent_line(const std::string& line);
 
 }  // namespace gpilot

@@ -39,6 +39,45 @@ TEST(EvalSequence, ParsesBoxesAndRejectsBadLines) {
   EXPECT_FALSE(parse_box("1,2,3").has_value());
   EXPECT_FALSE(parse_box("1,2,0,4").has_value());
   EXPECT_FALSE(parse_box("a,b,c,d").has_value());
+  EXPECT_FALSE(parse_box("NaN,NaN,NaN,NaN").has_value());
+  EXPECT_TRUE(is_absent_line("NaN,NaN,NaN,NaN"));
+  EXPECT_TRUE(is_absent_line("nan\tnan\tnan\tnan\r"));
+  EXPECT_FALSE(is_absent_line("NaN,NaN,NaN"));
+  EXPECT_FALSE(is_absent_line("1,NaN,NaN,NaN"));
+}
+
+// UAV123 marks frames without a visible target "NaN,NaN,NaN,NaN": no truth there, and the frame says so.
+TEST(EvalSequence, OtbFolderNanLineIsAnAbsentTarget) {
+  const fs::path dir = fs::temp_directory_path() / "gpilot_eval_otb_nan_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "img");
+  for (int i = 1; i <= 3; ++i)
+    cv::imwrite((dir / "img" / ("000" + std::to_string(i) + ".jpg")).string(), cv::Mat(20, 30, CV_8UC3, cv::Scalar(i)));
+  std::ofstream(dir / "groundtruth_rect.txt") << "11,21,5,6\nNaN,NaN,NaN,NaN\n12,22,5,6\n";
+  auto src = open_otb(dir.string());
+  EvalFrame f;
+  ASSERT_TRUE(src->next(f));
+  EXPECT_FALSE(f.absent);
+  ASSERT_TRUE(src->next(f));
+  EXPECT_TRUE(f.absent);
+  EXPECT_FALSE(f.truth.has_value());
+  ASSERT_TRUE(src->next(f));
+  EXPECT_FALSE(f.absent);
+  EXPECT_EQ(*f.truth, cv::Rect2d(11, 21, 5, 6));
+  fs::remove_all(dir);
+}
+
+// Frames: visible, absent x2 (lost on one), visible (IoU 0.2, 0.6) -> re-found 1 visible frame after the
+// return; absent again at the end is a reappearance that never comes (none pushed).
+TEST(EvalMetrics, AbsenceBehaviourCountsLostReportsAndRefindDelays) {
+  const std::vector<FrameVerdict> v = {{false, true, 0.8}, {true, false, 0.0}, {true, true, 0.0}, {false, true, 0.2},
+                                       {false, true, 0.6}, {true, true, 0.0},  {false, false, 0.7}, {false, true, 0.1}};
+  const AbsenceBehaviour b = absence_behaviour(v);
+  EXPECT_EQ(b.absent_frames, 3);
+  EXPECT_EQ(b.reported_lost, 1);
+  // Second reappearance: the tracker reported no box on the first visible frame, then IoU 0.1: never.
+  EXPECT_EQ(b.refound_after, (std::vector<int>{1, -1}));
+  EXPECT_TRUE(absence_behaviour({{false, true, 1.0}}).refound_after.empty());
 }
 
 TEST(EvalSequence, OtbFolderBoxesAreMadeZeroBased) {
