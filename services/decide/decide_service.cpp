@@ -7,7 +7,6 @@
 #include "decide_service.hpp"
 
 namespace gpilot {
-namespace {
 
 static_assert(static_cast<int>(GestureMode::Hover) == gesture_cmd_t::MODE_HOVER &&
                   static_cast<int>(GestureMode::Fine) == gesture_cmd_t::MODE_FINE &&
@@ -17,7 +16,7 @@ static_assert(static_cast<int>(GestureMode::Hover) == gesture_cmd_t::MODE_HOVER 
                   static_cast<int>(GestureMode::Further) == gesture_cmd_t::MODE_FURTHER,
               "GestureMode and gesture_cmd_t::MODE_* must agree");
 
-HandObservation to_core(const hand_obs_t& m) {
+HandObservation to_hand_observation(const hand_obs_t& m) {
   HandObservation o;
   o.utime = m.utime;
   o.seq = m.seq;
@@ -28,6 +27,8 @@ HandObservation to_core(const hand_obs_t& m) {
   o.user_box_width = m.user_box[2];
   return o;
 }
+
+namespace {
 
 gesture_cmd_t to_message(const GestureCommand& c) {
   gesture_cmd_t m{};
@@ -58,7 +59,7 @@ const char* reset_reason(GestureDecider::Reset r) {
 std::shared_ptr<void> start_decide_service(const Config& config, BusNode& node) {
   auto decider = std::make_shared<GestureDecider>(config.section<DecideParams>("decide"));
   node.subscribe<hand_obs_t>("HAND_OBS", [&node, d = decider.get()](const hand_obs_t& m, int64_t) {
-    const gesture_cmd_t out = to_message(d->update(to_core(m)));
+    const gesture_cmd_t out = to_message(d->update(to_hand_observation(m)));
     if (const char* why = reset_reason(d->last_reset())) node.set_state(health_t::STATE_OK, why);
     node.publish("GESTURE_CMD", out);
   });

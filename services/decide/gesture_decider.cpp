@@ -8,7 +8,8 @@
 namespace gpilot {
 
 GestureDecider::GestureDecider(const DecideParams& params)
-    : params_(params), s_out_(params.buffer_size), s_front_(params.buffer_size), tree_(params) {}
+    : params_(params), s_out_(params.buffer_size), s_front_(params.buffer_size), tree_(params), evidence_(params),
+      use_evidence_(params.rule == "evidence") {}
 
 GestureCommand GestureDecider::update(const HandObservation& obs) {
   last_reset_ = Reset::None;
@@ -24,6 +25,7 @@ GestureCommand GestureDecider::update(const HandObservation& obs) {
   if (last_reset_ != Reset::None) {
     s_out_.clear();
     s_front_.clear();
+    evidence_.reset();
   }
   have_last_ = true;
   last_utime_ = obs.utime;
@@ -44,7 +46,14 @@ GestureCommand GestureDecider::update(const HandObservation& obs) {
     s_out_.push(obs.kind == HandObservation::Kind::Out ? obs.vector : none);
     s_front_.push(obs.kind == HandObservation::Kind::Front ? obs.vector : none);
   }
-  const Decision d = tree_.decide(s_out_, s_front_);
+  // The buffers' counts go out with every command, whichever rule decides.
+  Decision d = tree_.decide(s_out_, s_front_);
+  if (use_evidence_) {
+    const Decision e = usable ? evidence_.update(static_cast<int>(obs.kind), obs.vector, obs.user_box_width) : Decision{};
+    d.mode = e.mode;
+    d.out_mean = e.out_mean;
+    d.z = e.z;
+  }
   cmd.n_out = d.n_out;
   cmd.n_front_higher = d.n_front_higher;
   cmd.n_front_lower = d.n_front_lower;

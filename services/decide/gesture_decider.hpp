@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "decision_tree.hpp"
+#include "evidence_rule.hpp"
 
 namespace gpilot {
 
@@ -35,6 +36,8 @@ class GestureDecider {
   StateBuffer s_out_;
   StateBuffer s_front_;
   DecisionTree tree_;
+  EvidenceRule evidence_;
+  bool use_evidence_;
   bool have_last_ = false;
   int64_t last_utime_ = 0;
   int32_t last_track_id_ = 0;

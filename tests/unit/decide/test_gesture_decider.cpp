@@ -9,6 +9,13 @@ namespace {
 constexpr int64_t kT0 = 1700000000000000;
 constexpr int64_t kFrameUs = 40000;  // 25 fps
 
+// These tests are about Alg. 3 and the history rules: the paper's rule, whatever the default is.
+DecideParams paper() {
+  DecideParams p;
+  p.rule = "paper";
+  return p;
+}
+
 HandObservation out_obs(int i, Vec2 v, double box_width = 200.0, int32_t track = 1) {
   HandObservation o;
   o.utime = kT0 + i * kFrameUs;
@@ -21,7 +28,7 @@ HandObservation out_obs(int i, Vec2 v, double box_width = 200.0, int32_t track =
 }
 
 TEST(GestureDecider, CommandCarriesFrameSeqUtimeAndNormalisedDirection) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   GestureCommand c;
   for (int i = 0; i < 31; ++i) {
     c = d.update(out_obs(i, {-100, 20}));
@@ -43,7 +50,7 @@ TEST(GestureDecider, CommandCarriesFrameSeqUtimeAndNormalisedDirection) {
 
 TEST(GestureDecider, DirectionDoesNotChangeWithRange) {
   // The same arm seen at twice the distance: half the pixels, half the box.
-  GestureDecider near_d{DecideParams{}}, far_d{DecideParams{}};
+  GestureDecider near_d{paper()}, far_d{paper()};
   GestureCommand near_c, far_c;
   for (int i = 0; i < 40; ++i) {
     near_c = near_d.update(out_obs(i, {-120, 30}, 240));
@@ -54,7 +61,7 @@ TEST(GestureDecider, DirectionDoesNotChangeWithRange) {
 }
 
 TEST(GestureDecider, FrontObservationsComeCloser) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   GestureCommand c;
   for (int i = 0; i < 31; ++i) {
     HandObservation o = out_obs(i, {3, -25});
@@ -68,7 +75,7 @@ TEST(GestureDecider, FrontObservationsComeCloser) {
 }
 
 TEST(GestureDecider, GapLongerThanTimeoutEmptiesBuffers) {
-  GestureDecider d{DecideParams{}};  // gap timeout 0.5 s
+  GestureDecider d{paper()};  // gap timeout 0.5 s
   for (int i = 0; i < 40; ++i) d.update(out_obs(i, {-100, 0}));
   // GIVEN a FINE command, WHEN the next frame comes 0.6 s after the last
   HandObservation late = out_obs(39, {-100, 0});
@@ -80,7 +87,7 @@ TEST(GestureDecider, GapLongerThanTimeoutEmptiesBuffers) {
 }
 
 TEST(GestureDecider, GapWithinTimeoutKeepsHistory) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   for (int i = 0; i < 40; ++i) d.update(out_obs(i, {-100, 0}));
   HandObservation o = out_obs(39, {-100, 0});
   o.utime += 400000;
@@ -89,7 +96,7 @@ TEST(GestureDecider, GapWithinTimeoutKeepsHistory) {
 }
 
 TEST(GestureDecider, NewUserEmptiesBuffers) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   for (int i = 0; i < 40; ++i) d.update(out_obs(i, {-100, 0}, 200, 1));
   const GestureCommand c = d.update(out_obs(40, {-100, 0}, 200, 2));
   EXPECT_EQ(d.last_reset(), GestureDecider::Reset::NewUser);
@@ -98,7 +105,7 @@ TEST(GestureDecider, NewUserEmptiesBuffers) {
 }
 
 TEST(GestureDecider, LostTrackEmptiesBuffersAndHovers) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   for (int i = 0; i < 40; ++i) d.update(out_obs(i, {-100, 0}));
   HandObservation lost = out_obs(40, {-100, 0});
   lost.tracking = false;
@@ -110,7 +117,7 @@ TEST(GestureDecider, LostTrackEmptiesBuffersAndHovers) {
 }
 
 TEST(GestureDecider, BoxWithoutWidthHovers) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   GestureCommand c;
   for (int i = 0; i < 40; ++i) c = d.update(out_obs(i, {-100, 0}, 0.0));
   EXPECT_EQ(c.mode, GestureMode::Hover);
@@ -118,7 +125,7 @@ TEST(GestureDecider, BoxWithoutWidthHovers) {
 }
 
 TEST(GestureDecider, TimeGoingBackwardsEmptiesBuffers) {
-  GestureDecider d{DecideParams{}};
+  GestureDecider d{paper()};
   for (int i = 0; i < 40; ++i) d.update(out_obs(i, {-100, 0}));
   d.update(out_obs(10, {-100, 0}));
   EXPECT_EQ(d.last_reset(), GestureDecider::Reset::TimeBackwards);

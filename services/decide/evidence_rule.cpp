@@ -1,0 +1,72 @@
+// EvidenceRule: per-command evidence with hysteresis (see evidence_rule.hpp).
+#include "evidence_rule.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gpilot {
+
+EvidenceRule::Class EvidenceRule::classify(int kind, Vec2 v, double lambda4) {
+  if (v.is_zero()) return kNone;
+  if (kind == 1) {
+    if (std::fabs(v.y) > std::fabs(lambda4 * v.x)) return v.y < 0.0 ? kUp : kDown;  // Alg. 3's snap, one vector
+    return v.x < 0.0 ? kFineLeft : kFineRight;
+  }
+  if (kind == 2) {
+    if (v.y < 0.0) return kCloser;
+    if (v.y > 0.0) return kFurther;
+  }
+  return kNone;
+}
+
+void EvidenceRule::reset() {
+  evidence_.fill(0.0);
+  current_ = kNone;
+  last_kind_ = 0;
+  last_vector_ = {};
+  for (auto& r : recent_) r.clear();
+}
+
+Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
+  const Class c = classify(kind, vector, params_.lambda4);
+  // A hand far from where the same kind of hand was a frame ago is moving: no evidence for anything.
+  const bool moving = c != kNone && kind == last_kind_ &&
+                      std::hypot(vector.x - last_vector_.x, vector.y - last_vector_.y) > params_.moving_ratio * box_width;
+  last_kind_ = kind;
+  last_vector_ = vector;
+  for (int k = 1; k < kClasses; ++k) {
+    const bool support = k == c && !moving;
+    evidence_[k] = std::clamp(evidence_[k] + (support ? 1.0 : -params_.evidence_decay), 0.0,
+                              static_cast<double>(params_.evidence_max));
+    if (support) {
+      recent_[k].push_back(vector);
+      while (static_cast<int>(recent_[k].size()) > params_.direction_frames) recent_[k].pop_front();
+    }
+  }
+  // Leave the held command once its evidence is down to evidence_leave; enter the strongest one at or above
+  // evidence_enter (the held one keeps priority while it holds).
+  if (current_ != kNone && evidence_[current_] <= params_.evidence_leave) current_ = kNone;
+  Class best = kNone;
+  for (int k = 1; k < kClasses; ++k)
+    if (evidence_[k] >= params_.evidence_enter && (best == kNone || evidence_[k] > evidence_[best])) best = static_cast<Class>(k);
+  if (best != kNone && (current_ == kNone || evidence_[best] > evidence_[current_])) current_ = best;
+
+  Decision d;
+  if (current_ == kNone) return d;
+  Vec2 mean;
+  for (const Vec2& v : recent_[current_]) mean.x += v.x, mean.y += v.y;
+  const double n = std::max<size_t>(1, recent_[current_].size());
+  mean = {mean.x / n, mean.y / n};
+  switch (current_) {
+    case kFineLeft:
+    case kFineRight: d.mode = GestureMode::Fine; d.out_mean = mean; break;
+    case kUp: d.mode = GestureMode::Up; d.out_mean = {0.0, mean.y}; break;
+    case kDown: d.mode = GestureMode::Down; d.out_mean = {0.0, mean.y}; break;
+    case kCloser: d.mode = GestureMode::Closer; d.z = 1.0; break;
+    case kFurther: d.mode = GestureMode::Further; d.z = -1.0; break;
+    default: break;
+  }
+  return d;
+}
+
+}  // namespace gpilot

@@ -1,0 +1,47 @@
+// EvidenceRule (decide.rule: evidence): a faster alternative to Alg. 3's 60-frame majority, with hysteresis.
+// Each frame's observation is classified on its own (OUT by the lambda4 snap: UP, DOWN, FINE to the image's
+// left or right; FRONT: CLOSER above the body centre, FURTHER below). Every command has an evidence count:
+// +1 for a frame of its class while the hand holds still, -decay otherwise, between 0 and evidence_max. A
+// command is entered once its evidence reaches evidence_enter (the strongest one wins) and left when it falls to
+// evidence_leave (a CUSUM / sequential test in frames: a steady pose needs evidence_enter frames, a stray frame
+// decays away, and the pose just held needs (evidence_max - evidence_leave) / decay frames to be let go).
+// A hand that moves more than moving_ratio box widths from one frame to the next is on its way somewhere: it is
+// evidence for nothing (an arm going out or coming down passes through the DOWN sector for ~0.3 s).
+// FINE's direction is the mean of the last direction_frames vectors of its class, UP/DOWN's the mean y.
+#pragma once
+
+#include <array>
+#include <deque>
+
+#include "decide_params.hpp"
+#include "decision_tree.hpp"
+
+namespace gpilot {
+
+class EvidenceRule {
+ public:
+  // The commands the rule tells apart: FINE is two, so that pointing the other way is a new command and not
+  // an average of both arms.
+  enum Class { kNone = 0, kFineLeft, kFineRight, kUp, kDown, kCloser, kFurther, kClasses };
+
+  explicit EvidenceRule(const DecideParams& params) : params_(params) {}
+
+  // kind: 0 none, 1 OUT, 2 FRONT (hand_obs_t::KIND_*); vector in px; box_width > 0.
+  Decision update(int kind, Vec2 vector, double box_width);
+  void reset();
+
+  // This frame's class from one observation (exposed for tests).
+  static Class classify(int kind, Vec2 v, double lambda4);
+  double evidence(Class c) const { return evidence_[c]; }
+  Class current() const { return current_; }
+
+ private:
+  DecideParams params_;
+  std::array<double, kClasses> evidence_{};
+  Class current_ = kNone;
+  int last_kind_ = 0;
+  Vec2 last_vector_;
+  std::array<std::deque<Vec2>, kClasses> recent_;  // the last direction_frames supporting vectors per class
+};
+
+}  // namespace gpilot

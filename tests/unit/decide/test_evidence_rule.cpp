@@ -1,0 +1,142 @@
+// EvidenceRule (decide.rule: evidence) on hand-made observation sequences with known reaction times.
+#include <gtest/gtest.h>
+
+#include "config.hpp"
+#include "evidence_rule.hpp"
+#include "gesture_decider.hpp"
+
+namespace gpilot {
+namespace {
+
+constexpr int kOut = 1, kFront = 2;
+constexpr double kBox = 200.0;  // px: moving_ratio 0.03 -> a hand moving more than 6 px a frame supports nothing
+
+DecideParams evidence_params() {
+  DecideParams p;
+  p.rule = "evidence";
+  return p;  // enter 6, leave 2, max 10, decay 1, direction over 8 frames
+}
+
+TEST(EvidenceRule, ClassifiesOneObservationLikeAlg3SnapsAMean) {
+  EXPECT_EQ(EvidenceRule::classify(kOut, {100, -51}, 0.5), EvidenceRule::kUp);
+  EXPECT_EQ(EvidenceRule::classify(kOut, {100, -50}, 0.5), EvidenceRule::kFineRight);
+  EXPECT_EQ(EvidenceRule::classify(kOut, {-100, 20}, 0.5), EvidenceRule::kFineLeft);
+  EXPECT_EQ(EvidenceRule::classify(kOut, {-20, 80}, 0.5), EvidenceRule::kDown);
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, -20}, 0.5), EvidenceRule::kCloser);
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, 20}, 0.5), EvidenceRule::kFurther);
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, 0}, 0.5), EvidenceRule::kNone);
+  EXPECT_EQ(EvidenceRule::classify(0, {}, 0.5), EvidenceRule::kNone);
+}
+
+TEST(EvidenceRule, SteadyPoseIsEnteredOnItsSixthFrame) {
+  EvidenceRule r(evidence_params());
+  for (int i = 1; i <= 5; ++i) EXPECT_EQ(r.update(kOut, {-100, 10}, kBox).mode, GestureMode::Hover) << i;
+  const Decision d = r.update(kOut, {-100, 10}, kBox);
+  EXPECT_EQ(d.mode, GestureMode::Fine);
+  EXPECT_DOUBLE_EQ(d.out_mean.x, -100);
+  EXPECT_DOUBLE_EQ(d.out_mean.y, 10);
+}
+
+TEST(EvidenceRule, HeldPoseIsLetGoEightFramesAfterTheArmComesDown) {
+  // GIVEN FINE held long enough to cap its evidence at 10
+  EvidenceRule r(evidence_params());
+  for (int i = 0; i < 20; ++i) r.update(kOut, {-100, 10}, kBox);
+  EXPECT_EQ(r.evidence(EvidenceRule::kFineLeft), 10);
+  // WHEN nothing is seen: evidence 9, 8, ... reaches 2 (evidence_leave) on the 8th frame
+  for (int i = 1; i <= 7; ++i) EXPECT_EQ(r.update(0, {}, kBox).mode, GestureMode::Fine) << i;
+  EXPECT_EQ(r.update(0, {}, kBox).mode, GestureMode::Hover);
+}
+
+TEST(EvidenceRule, AStrayFrameInThreeNeverCommands) {
+  // +1 for the stray frame, -1 for each of the two others: the evidence never builds up
+  EvidenceRule r(evidence_params());
+  for (int i = 0; i < 300; ++i)
+    EXPECT_EQ(r.update(i % 3 == 0 ? kFront : 0, i % 3 == 0 ? Vec2{0, -30} : Vec2{}, kBox).mode, GestureMode::Hover) << i;
+}
+
+TEST(EvidenceRule, AMovingHandIsEvidenceForNothing) {
+  // An arm on its way (7 px a frame > 0.03 * 200 px) through the DOWN sector, then held out: DOWN never comes,
+  // FINE comes on the 6th still frame.
+  EvidenceRule r(evidence_params());
+  Vec2 v{-60, 110};
+  r.update(kOut, v, kBox);  // the first frame of a hand cannot be moving: evidence 1 for DOWN
+  for (int i = 0; i < 12; ++i) {
+    v = {v.x - 5, v.y - 5};  // 7.1 px a frame
+    EXPECT_EQ(r.update(kOut, v, kBox).mode, GestureMode::Hover) << i;
+  }
+  v = {-150, 10};  // arrives: a jump (moving), then still
+  EXPECT_EQ(r.update(kOut, v, kBox).mode, GestureMode::Hover);
+  for (int i = 1; i <= 5; ++i) EXPECT_EQ(r.update(kOut, v, kBox).mode, GestureMode::Hover) << i;
+  EXPECT_EQ(r.update(kOut, v, kBox).mode, GestureMode::Fine);
+  EXPECT_EQ(r.evidence(EvidenceRule::kDown), 0);
+}
+
+TEST(EvidenceRule, PointingTheOtherWaySwitchesWithoutAveragingBothArms) {
+  EvidenceRule r(evidence_params());
+  for (int i = 0; i < 20; ++i) r.update(kOut, {-150, 5}, kBox);
+  // The right arm out: its first frame is a jump across the image (moving: evidence for nothing), then its
+  // evidence is 1..6 while the left's falls 8..3; the 7th frame switches (6 >= enter and 6 > 3).
+  for (int i = 1; i <= 6; ++i) {
+    const Decision d = r.update(kOut, {148, 4}, kBox);
+    EXPECT_EQ(d.mode, GestureMode::Fine);
+    EXPECT_DOUBLE_EQ(d.out_mean.x, -150) << i;  // still the left arm's direction, never a mix of both
+  }
+  const Decision d = r.update(kOut, {148, 4}, kBox);
+  EXPECT_EQ(d.mode, GestureMode::Fine);
+  EXPECT_DOUBLE_EQ(d.out_mean.x, 148);
+}
+
+TEST(EvidenceRule, UpAndDownSnapXAndFrontGivesZ) {
+  EvidenceRule r(evidence_params());
+  Decision d;
+  for (int i = 0; i < 6; ++i) d = r.update(kOut, {30, -90}, kBox);
+  EXPECT_EQ(d.mode, GestureMode::Up);
+  EXPECT_EQ(d.out_mean.x, 0.0);
+  EXPECT_DOUBLE_EQ(d.out_mean.y, -90);
+  EvidenceRule f(evidence_params());
+  for (int i = 0; i < 6; ++i) d = f.update(kFront, {2, 25}, kBox);
+  EXPECT_EQ(d.mode, GestureMode::Further);
+  EXPECT_EQ(d.z, -1.0);
+}
+
+TEST(EvidenceRule, ThresholdsComeFromParams) {
+  DecideParams p = evidence_params();
+  p.evidence_enter = 3;
+  EvidenceRule r(p);
+  r.update(kFront, {0, -30}, kBox);
+  r.update(kFront, {0, -30}, kBox);
+  EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Closer);
+}
+
+TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {
+  GestureDecider d(evidence_params());
+  HandObservation o;
+  o.kind = HandObservation::Kind::Out;
+  o.vector = {-100, 0};
+  o.user_box_width = kBox;
+  o.track_id = 1;
+  GestureCommand c;
+  for (int i = 0; i < 6; ++i) {
+    o.utime = 1'000'000 + i * 40'000;
+    o.seq = i;
+    c = d.update(o);
+  }
+  EXPECT_EQ(c.mode, GestureMode::Fine);  // the 6th frame: Alg. 3 would wait for the 31st
+  EXPECT_DOUBLE_EQ(c.direction[0], -0.5);
+  EXPECT_EQ(c.n_out, 6);                 // the buffers' counts still go out
+  o.utime += 600'000;                    // a gap: everything starts again
+  EXPECT_EQ(d.update(o).mode, GestureMode::Hover);
+  EXPECT_EQ(d.last_reset(), GestureDecider::Reset::Gap);
+}
+
+TEST(GestureDeciderEvidence, UnknownRuleIsAConfigError) {
+  Config c;
+  c.set("decide.rule=fastest");
+  EXPECT_THROW(c.section<DecideParams>("decide"), ConfigError);
+  Config ok;
+  ok.set("decide.rule=paper");
+  EXPECT_EQ(ok.section<DecideParams>("decide").rule, "paper");
+}
+
+}  // namespace
+}  // namespace gpilot

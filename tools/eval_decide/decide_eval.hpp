@@ -1,0 +1,106 @@
+// gpilot-eval-decide's core: the decide stage (GestureDecider, the service's own classes) and the flight
+// stage's command adoption (FlightBridge) run over a log's HAND_OBS, scored against its GROUND_TRUTH: how long
+// after a true gesture change the new command comes, how many frames still carry the old one, and how often
+// a command nobody asked for is given. No bus, no clock: time is the frames' utime.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "decide/decide_params.hpp"
+#include "decide/gesture_decider.hpp"
+#include "flight/flight_params.hpp"
+#include "flight/flight_types.hpp"
+
+namespace gpilot {
+
+// One HAND_OBS frame with the ground truth of the same seq.
+struct EvalFrame {
+  HandObservation obs;
+  UserTrack track;           //!< what the flight stage knows of the user in this frame (from HAND_OBS)
+  int gesture = 0;           //!< ground_truth_t::GESTURE_*: what the user means
+  int expected_mode = 0;     //!< gesture_cmd_t::MODE_* the paper's rules give on the true hand positions
+  double expected_dir[2] = {0.0, 0.0};  //!< the truth's camera-frame x, y (box widths)
+};
+
+struct EvalLog {
+  std::string path;
+  std::vector<EvalFrame> frames;  //!< HAND_OBS in log order, each with its GROUND_TRUTH
+  int64_t hand_obs_without_truth = 0;
+};
+
+// Reads HAND_OBS and GROUND_TRUTH (joined by seq); throws LogError for an unreadable log, std::runtime_error
+// for one without both channels.
+EvalLog read_eval_log(const std::string& path);
+
+// A command as the scoring sees it: a mode and, for FINE/UP/DOWN, the camera-frame x, y.
+struct ScoredCommand {
+  int mode = 0;
+  double dir[2] = {0.0, 0.0};
+};
+
+// How the truth is cut into gestures and what counts as the right command.
+struct ScoreRules {
+  double turn_deg = 30.0;       //!< an OUT gesture whose pointed direction turns more than this is a new gesture
+  double fine_angle_deg = 30.0; //!< a FINE command within this angle of the truth's direction is the right one
+};
+
+// The truth of one frame, as the scoring needs it.
+struct TruthFrame {
+  int64_t utime = 0;
+  int gesture = 0;
+  int expected_mode = 0;
+  double dir[2] = {0.0, 0.0};
+};
+
+// One true gesture: frames [begin, end), the command it asks for (HOVER at REST; else the most frequent
+// expected mode of its frames), and whether the camera saw it (not: most frames' expected mode is HOVER
+// although the user gestures; such a gesture is not scored).
+struct TruthSegment {
+  size_t begin = 0, end = 0;
+  int mode = 0;
+  double dir[2] = {0.0, 0.0};  //!< mean truth direction over its FINE frames
+  bool seen = true;
+};
+std::vector<TruthSegment> truth_segments(const std::vector<TruthFrame>& truth, const ScoreRules& rules);
+
+struct Score {
+  int64_t frames = 0;          //!< scored frames (frames of seen gestures)
+  double minutes = 0.0;        //!< duration of the scored frames
+  int changes = 0;             //!< true gesture changes scored (every seen gesture after the first)
+  int missed = 0;              //!< changes whose new command never came before the next change
+  std::vector<int64_t> reaction_us;  //!< per change that got its command: change -> first right command
+  std::vector<int> reaction_frames;
+  int64_t old_frames = 0;      //!< frames from each change up to its first right command (the reaction)
+  int64_t wrong_frames = 0;    //!< frames whose command is not the one the truth asks for (old ones included)
+  // A command nobody asked for: not HOVER, not the truth's, and not the previous gesture's command still held
+  // while the reaction runs. Counted in episodes (onsets) and frames.
+  int false_at_rest = 0;       //!< ... while the user rests
+  int64_t false_at_rest_frames = 0;
+  int confused = 0;            //!< ... while the user asks for another motion (CLOSER for FURTHER, UP for FINE)
+  int64_t confused_frames = 0;
+
+  void add(const Score& o);    //!< pools another log's score into this one
+  double reaction_median_s() const;
+  double reaction_max_s() const;
+  int reaction_median_frames() const;
+  int reaction_max_frames() const;
+  double false_per_minute() const { return minutes > 0 ? (false_at_rest + confused) / minutes : 0.0; }
+};
+
+// Scores one command per truth frame (commands.size() == truth.size()).
+Score score_commands(const std::vector<TruthFrame>& truth, const std::vector<ScoredCommand>& commands,
+                     const ScoreRules& rules);
+
+// The decide stage's commands over a log (one per frame), and what the flight stage flies at each frame's
+// time given those commands (FlightBridge with the operator engaged; its command spacing is what differs).
+struct StageRun {
+  std::vector<ScoredCommand> decided;
+  std::vector<ScoredCommand> flown;
+};
+StageRun run_stages(const EvalLog& log, const DecideParams& decide, const FlightParams& flight);
+
+std::vector<TruthFrame> truth_of(const EvalLog& log);
+
+}  // namespace gpilot
