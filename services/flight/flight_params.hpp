@@ -36,6 +36,10 @@ struct FlightParams {
   // no longer covers the neck, and Alg. 2 takes the neck for a hand in front above the centre: CLOSER again,
   // a loop that ends in the user. Ours, not the paper's (its users stood further off); 0 turns it off.
   double closest_box_height_ratio = 0.75;
+  // With MAVLink, the autopilot's own offboard-loss failsafe (PX4 COM_OF_LOSS_T, ArduPilot GUID_TIMEOUT) is what
+  // stops the vehicle when this process goes quiet: ENGAGE is refused unless the autopilot reports one no
+  // longer than this.
+  double max_autopilot_loss_s = 1.0;
 
   template <class V>
   void visit(V& v) {
@@ -60,6 +64,8 @@ struct FlightParams {
     v("face_band_ratio", face_band_ratio, 0.0, 1.0, "top fraction of the user box taken as the face band");
     v("closest_box_height_ratio", closest_box_height_ratio, 0.0, 10.0,
       "no closing in while the user box is this many image heights tall (0: no limit)");
+    v("max_autopilot_loss_s", max_autopilot_loss_s, 0.0, 60.0,
+      "MAVLink: refuse ENGAGE unless the autopilot's offboard-loss failsafe (COM_OF_LOSS_T/GUID_TIMEOUT) is <= this, s");
   }
 };
 
@@ -105,6 +111,7 @@ struct MavlinkParams {
   double heartbeat_hz = 1.0;          //!< our HEARTBEAT rate
   std::string autopilot = "px4";      //!< px4 or ardupilot: which flight mode ENGAGE asks for, how TAKEOFF is sent
   bool set_mode_on_engage = true;     //!< on ENGAGE, ask for PX4 OFFBOARD / ArduPilot GUIDED (MAV_CMD_DO_SET_MODE)
+  double param_timeout_s = 1.0;       //!< on ENGAGE, wait this long for the offboard-loss parameter's value
 
   template <class V>
   void visit(V& v) {
@@ -116,6 +123,8 @@ struct MavlinkParams {
     v("heartbeat_hz", heartbeat_hz, 0.2, 10.0, "HEARTBEAT rate, Hz");
     v("autopilot", autopilot, "px4 or ardupilot (flight mode asked on ENGAGE, TAKEOFF altitude convention)");
     v("set_mode_on_engage", set_mode_on_engage, "on ENGAGE send DO_SET_MODE: PX4 OFFBOARD or ArduPilot GUIDED");
+    v("param_timeout_s", param_timeout_s, 0.05, 30.0,
+      "on ENGAGE, wait this long for the autopilot's offboard-loss parameter (else refuse), s");
   }
 };
 

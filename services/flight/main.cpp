@@ -2,17 +2,24 @@
 // VEHICLE_STATE from the bus with backend none); writes FLIGHT_SETPOINT at flight.setpoint_rate_hz always
 // (zero with reasons when unsafe), VEHICLE_STATE from the built-in simulator (backend sim) or the autopilot
 // (backend mavlink, MAVLink v2 over UDP), and HEALTH.
+// Watched: READY=1 once running and WATCHDOG=1 from the setpoint loop itself (sd_notify; systemd's WatchdogSec or
+// gpilot-launch's watchdog_s), so a frozen loop is a silent watchdog, and the process is killed and restarted.
+// With MAVLink, ENGAGE first reads the autopilot's offboard-loss failsafe time (mavlink/offboard_loss.hpp).
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 
 #include "bus_node.hpp"
 #include "flight_bridge.hpp"
 #include "flight_messages.hpp"
+#include "mavlink/offboard_loss.hpp"
 #include "mavlink/session.hpp"
 #include "mavlink/udp_link.hpp"
 #include "quadrotor_sim.hpp"
 #include "service_cli.hpp"
+
+#include <systemd/sd-daemon.h>
 
 namespace gpilot {
 namespace {
@@ -37,6 +44,8 @@ class FlightService {
       if (mav_params_.autopilot != "px4" && mav_params_.autopilot != "ardupilot")
         throw ConfigError("mavlink.autopilot: '" + mav_params_.autopilot + "' is not one of px4, ardupilot");
       session_.emplace(mav_params_);
+      gate_.emplace(mavlink::offboard_loss_param(mav_params_.autopilot), fp_.max_autopilot_loss_s,
+                    mav_params_.param_timeout_s);
     } else if (fp_.backend != "none") {
       throw ConfigError("flight.backend: '" + fp_.backend + "' is not one of sim, mavlink, none");
     }
@@ -67,13 +76,59 @@ class FlightService {
       link_->send(session_->heartbeat());
     }
     node_.set_state(health_t::STATE_OK, "backend " + fp_.backend + ", not engaged");
+    // The watchdog: its period comes from the supervisor (WATCHDOG_USEC); pinged at a quarter of it.
+    uint64_t watchdog_usec = 0;
+    if (sd_watchdog_enabled(0, &watchdog_usec) > 0) watchdog_period_us_ = static_cast<int64_t>(watchdog_usec / 4);
+    sd_notify(0, "READY=1");
   }
+
+  // Tells the supervisor (systemd, gpilot-launch) that the process is on its way out: not frozen.
+  static void stopping() { sd_notify(0, "STOPPING=1"); }
 
  private:
   void control(const flight_control_t& m) {
-    std::string why;
     const OperatorRequest r = to_core(m);
     if (operator_.repeat(r)) return;
+    if (gate_ && !gate_check(m, r)) return;
+    apply_control(m, r);
+  }
+
+  // With MAVLink, an ENGAGE waits for the autopilot's offboard-loss parameter (EngageGate): false while it does
+  // (or when it was refused); any other request cancels a pending ENGAGE and goes on.
+  bool gate_check(const flight_control_t& m, const OperatorRequest& r) {
+    if (m.command != flight_control_t::COMMAND_ENGAGE) {
+      gate_->cancel();
+      return true;
+    }
+    if (refused_ && refused_->utime == r.utime && refused_->seq == r.seq && refused_->source == r.source) return false;
+    if (gate_->engage_requested(monotonic_utime()) == mavlink::EngageGate::Action::Request) {
+      pending_engage_ = m;
+      link_->send(session_->param_request_read(gate_->param()));
+    }
+    return false;
+  }
+
+  // What the gate says, from poll_mavlink (an answer) and tick (time).
+  void gate_act(mavlink::EngageGate::Action a) {
+    using A = mavlink::EngageGate::Action;
+    if (a == A::Request) link_->send(session_->param_request_read(gate_->param()));
+    if (a == A::Engage) {
+      std::fprintf(stderr, "gpilot-flight: the autopilot's %s is %.2f s (<= %.2f): engaging\n", gate_->param().c_str(),
+                   gate_->last_value(), fp_.max_autopilot_loss_s);
+      refused_.reset();
+      apply_control(pending_engage_, to_core(pending_engage_));
+    }
+    if (a == A::Refuse) {
+      const std::string why = "refusing to engage: " + gate_->why();
+      std::fprintf(stderr, "gpilot-flight: %s\n", why.c_str());
+      refused_ = to_core(pending_engage_);
+      node_.reject(why);
+      node_.set_state(health_t::STATE_DEGRADED, why);
+    }
+  }
+
+  void apply_control(const flight_control_t& m, const OperatorRequest& r) {
+    std::string why;
     const VehicleAction action = operator_.apply(r, in_, &why);
     if (!why.empty()) {
       node_.reject(why);
@@ -104,6 +159,11 @@ class FlightService {
   }
 
   void tick() {
+    if (watchdog_period_us_ > 0 && monotonic_utime() - last_watchdog_ >= watchdog_period_us_) {
+      sd_notify(0, "WATCHDOG=1");
+      last_watchdog_ = monotonic_utime();
+    }
+    if (gate_) gate_act(gate_->on_time(monotonic_utime()));
     in_.now = wall_utime();
     last_ = bridge_.update(in_);
     node_.publish("FLIGHT_SETPOINT", to_message(last_));
@@ -130,6 +190,7 @@ class FlightService {
       const auto state = session_->on_datagram(buf.data(), buf.size(), now);
       for (int64_t i = rejected_before; i < session_->parser().rejected(); ++i)
         node_.reject(std::string("MAVLink: ") + session_->parser().last_reject());
+      for (const auto& v : session_->take_param_values()) gate_act(gate_->on_param_value(v));
       if (state) {
         in_.vehicle = *state;
         in_.vehicle_received = now;
@@ -160,6 +221,11 @@ class FlightService {
   std::optional<mavlink::MavlinkSession> session_;
   OperatorState operator_;
   int setpoints_since_engage_ = 0;
+  std::optional<mavlink::EngageGate> gate_;   // MAVLink only
+  flight_control_t pending_engage_{};         // the ENGAGE waiting for the gate
+  std::optional<OperatorRequest> refused_;    // the last ENGAGE refused (its repeats are not asked again)
+  int64_t watchdog_period_us_ = 0;            // 0: not watched
+  int64_t last_watchdog_ = 0;
 };
 
 }  // namespace
@@ -178,6 +244,7 @@ int main(int argc, char** argv) {
     FlightService service(config, node);
     service.start();
     node.run();
+    FlightService::stopping();
     return 0;
   });
 }

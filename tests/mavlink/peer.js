@@ -6,6 +6,14 @@
 //   node peer.js encode   stdin: one JSON object per line {msg, seq, sysid, compid, fields: {camelCaseName: v}}
 //                         stdout: the v2 frame as one hex line
 //   node peer.js table ID...  stdout: {ID: {name, crcExtra, length}} from node-mavlink's registry
+//   node peer.js vehicle PORT [NAME=VALUE ...]
+//                         a test vehicle on UDP 127.0.0.1:PORT (the one mode with a socket; run it inside a
+//                         network namespace): answers PARAM_REQUEST_READ from the NAME=VALUE list (REAL32; a
+//                         name not listed gets no answer), flies the body-frame velocity of the last
+//                         SET_POSITION_TARGET_LOCAL_NED, sends HEARTBEAT and LOCAL_POSITION_NED at 20 Hz to
+//                         whoever wrote last, and applies its own offboard-loss failsafe as PX4 does: no
+//                         setpoint for COM_OF_LOSS_T (or GUID_TIMEOUT) seconds while moving -> hold (velocity 0).
+//                         stdout: one JSON event a line: listening, param_request, moving, failsafe.
 'use strict';
 const readline = require('readline');
 const { PassThrough } = require('stream');
@@ -65,11 +73,76 @@ function table(ids) {
   process.stdout.write(json(out) + '\n');
 }
 
+function vehicle(port, assignments) {
+  const dgram = require('dgram');
+  const params = {};
+  for (const a of assignments) {
+    const [k, v] = a.split('=');
+    params[k] = Number(v);
+  }
+  const lossS = params.COM_OF_LOSS_T ?? params.GUID_TIMEOUT ?? Infinity;
+  const out = (o) => process.stdout.write(json({ t: Date.now() / 1000, ...o }) + '\n');
+  const proto = new MavLinkProtocolV2(1, 1);
+  const sock = dgram.createSocket('udp4');
+  const input = new PassThrough();
+  const reader = input.pipe(new MavLinkPacketSplitter()).pipe(new MavLinkPacketParser());
+  let peer = null, seq = 0, lastSetpoint = 0, velocity = [0, 0, 0], moving = false;
+  const position = [0, 0, -1.5];
+  const send = (msg) => { if (peer) sock.send(proto.serialize(msg, seq++ & 255), peer.port, peer.address); };
+  reader.on('data', (packet) => {
+    const clazz = REGISTRY[packet.header.msgid];
+    if (!clazz) return;
+    const m = packet.protocol.data(packet.payload, clazz);
+    if (clazz === common.SetPositionTargetLocalNed) {
+      lastSetpoint = Date.now();
+      velocity = [m.vx, m.vy, m.vz];
+      const now = Math.hypot(...velocity) > 0.01;
+      if (now && !moving) out({ event: 'moving', velocity });
+      moving = now;
+    } else if (clazz === common.ParamRequestRead) {
+      const name = String(m.paramId).replace(/\0.*$/, '');
+      out({ event: 'param_request', name, answered: name in params });
+      if (!(name in params)) return;
+      const v = new common.ParamValue();
+      v.paramId = name;
+      v.paramValue = params[name];
+      v.paramType = common.MavParamType.REAL32;
+      v.paramCount = Object.keys(params).length;
+      v.paramIndex = Object.keys(params).indexOf(name);
+      send(v);
+    }
+  });
+  sock.on('message', (msg, rinfo) => { peer = rinfo; input.write(msg); });
+  setInterval(() => {  // the failsafe, checked every 10 ms
+    if (moving && Date.now() - lastSetpoint > lossS * 1000) {
+      out({ event: 'failsafe', since_setpoint_s: (Date.now() - lastSetpoint) / 1000, loss_s: lossS, velocity });
+      velocity = [0, 0, 0];
+      moving = false;
+    }
+  }, 10);
+  setInterval(() => {  // 20 Hz: integrate (body = NED here: the vehicle keeps yaw 0) and report
+    for (let i = 0; i < 3; ++i) position[i] += velocity[i] * 0.05;
+    const hb = new minimal.Heartbeat();
+    hb.type = minimal.MavType.QUADROTOR;
+    hb.autopilot = minimal.MavAutopilot.PX4;
+    hb.baseMode = 128 | 1;  // armed, custom mode
+    hb.systemStatus = minimal.MavState.ACTIVE;
+    hb.mavlinkVersion = 3;
+    send(hb);
+    const p = new common.LocalPositionNed();
+    [p.x, p.y, p.z] = position;
+    [p.vx, p.vy, p.vz] = velocity;
+    send(p);
+  }, 50);
+  sock.bind(port, '127.0.0.1', () => out({ event: 'listening', port, params }));
+}
+
 const mode = process.argv[2];
 if (mode === 'decode') decode();
 else if (mode === 'encode') encode();
 else if (mode === 'table') table(process.argv.slice(3).map(Number));
+else if (mode === 'vehicle') vehicle(Number(process.argv[3]), process.argv.slice(4));
 else {
-  process.stderr.write('usage: node peer.js decode|encode|table ID...\n');
+  process.stderr.write('usage: node peer.js decode|encode|table ID...|vehicle PORT [NAME=VALUE...]\n');
   process.exit(2);
 }

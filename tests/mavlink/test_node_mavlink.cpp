@@ -81,7 +81,7 @@ double num(const std::string& json, const std::string& key) { return std::stod(f
 
 TEST(NodeMavlink, ItsRegistryAgreesWithOurIdsCrcExtrasAndLengths) {
   REQUIRE_PEER();
-  const uint32_t ids[] = {0, 30, 32, 76, 77, 84, 245};
+  const uint32_t ids[] = {0, 20, 22, 30, 32, 76, 77, 84, 245};
   std::string args = "table";
   for (uint32_t id : ids) args += " " + std::to_string(id);
   const auto out = run_peer(args, "");
@@ -136,8 +136,9 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   MavlinkParams ardupilot;
   ardupilot.autopilot = "ardupilot";
   input += to_hex(MavlinkSession(ardupilot).takeoff(2.5f)) + "\n";
+  input += to_hex(s.param_request_read("COM_OF_LOSS_T")) + "\n";
   const auto out = run_peer("decode", input);
-  ASSERT_EQ(out.size(), 8u);  // 7 packets + summary
+  ASSERT_EQ(out.size(), 9u);  // 8 packets + summary
 
   const std::string& hb = out[0];
   EXPECT_EQ(field(hb, "msg"), "\"HEARTBEAT\"");
@@ -184,7 +185,12 @@ TEST(NodeMavlink, DecodesEveryFrameWeSendFieldByField) {
   EXPECT_NE(out.back().find("\"summary\""), std::string::npos);
   EXPECT_EQ(num(out[6], "command"), 22);
   EXPECT_EQ(num(out[6], "param7"), 2.5);  // ArduPilot: metres above home
-  EXPECT_EQ(num(out.back(), "valid"), 7);
+  EXPECT_EQ(field(out[7], "msg"), "\"PARAM_REQUEST_READ\"");
+  EXPECT_EQ(field(out[7], "paramId"), "\"COM_OF_LOSS_T\"");
+  EXPECT_EQ(num(out[7], "paramIndex"), -1);
+  EXPECT_EQ(num(out[7], "targetSystem"), 1);
+  EXPECT_EQ(num(out[7], "targetComponent"), 1);
+  EXPECT_EQ(num(out.back(), "valid"), 8);
   EXPECT_EQ(num(out.back(), "invalid"), 0);
 }
 
@@ -218,9 +224,11 @@ TEST(NodeMavlink, WeDecodeWhatItEncodes) {
       R"({"msg":"COMMAND_ACK","seq":13,"sysid":1,"compid":1,"fields":{"command":400,"result":0,"targetSystem":255,"targetComponent":191}})"
       "\n"
       R"({"msg":"LOCAL_POSITION_NED","seq":14,"sysid":1,"compid":1,"fields":{"timeBootMs":5010,"x":3.5,"y":-1.25,"z":-2.0,"vx":0.5,"vy":-0.25,"vz":0.125}})"
+      "\n"
+      R"({"msg":"PARAM_VALUE","seq":15,"sysid":1,"compid":1,"fields":{"paramId":"COM_OF_LOSS_T","paramValue":0.75,"paramType":9,"paramCount":900,"paramIndex":123}})"
       "\n";
   const auto out = run_peer("encode", req);
-  ASSERT_EQ(out.size(), 5u);
+  ASSERT_EQ(out.size(), 6u);
   std::vector<uint8_t> datagram;
   for (const auto& line : out) {
     const auto b = from_hex(line);
@@ -228,7 +236,14 @@ TEST(NodeMavlink, WeDecodeWhatItEncodes) {
   }
   MavlinkSession s{MavlinkParams{}};
   const auto state = s.on_datagram(datagram.data(), datagram.size(), 4242);
-  EXPECT_EQ(s.parser().counts().frames, 5);
+  EXPECT_EQ(s.parser().counts().frames, 6);
+  const auto params = s.take_param_values();
+  ASSERT_EQ(params.size(), 1u);
+  EXPECT_EQ(param_name(params[0].param_id), "COM_OF_LOSS_T");
+  EXPECT_EQ(params[0].param_value, 0.75f);
+  EXPECT_EQ(params[0].param_type, kMavParamTypeReal32);
+  EXPECT_EQ(params[0].param_count, 900);
+  EXPECT_EQ(params[0].param_index, 123);
   EXPECT_EQ(s.parser().rejected(), 0);
   ASSERT_TRUE(state.has_value());
   EXPECT_EQ(state->utime, 4242);
@@ -252,7 +267,7 @@ TEST(NodeMavlink, WeDecodeWhatItEncodes) {
   FrameParser p;
   std::vector<Frame> frames;
   p.feed(datagram.data(), datagram.size(), [&](const Frame& f) { frames.push_back(f); });
-  ASSERT_EQ(frames.size(), 5u);
+  ASSERT_EQ(frames.size(), 6u);
   const Heartbeat h = unpack_heartbeat(frames[0].payload);
   EXPECT_EQ(frames[0].seq, 10);
   EXPECT_EQ(h.custom_mode, 393216u);

@@ -2,6 +2,9 @@
 // shows progress (time, frames, mode, each stage's rate) and stops them all cleanly, in reverse order, on
 // Ctrl-C, at --duration, or when a service marked ends_run exits. Reads HEALTH, USER_TRACK and GESTURE_CMD; writes
 // FLIGHT_CONTROL (with --engage) and its own HEALTH.
+// A service with watchdog_s is watched as systemd would (sd_notify READY=1 / WATCHDOG=1 on a NOTIFY_SOCKET of
+// ours): silent longer than that once ready, it is killed and restarted at once. Every child gets SIGTERM when
+// the launcher dies, however it dies (PR_SET_PDEATHSIG): no stage flies on as an orphan.
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -10,14 +13,19 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <memory>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "clock.hpp"
+#include "notify_socket.hpp"
 #include "paths.hpp"
 #include "service_cli.hpp"
 #include "service_set.hpp"
 #include "gpilot/user_track_t.hpp"
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -32,6 +40,10 @@ struct Child {
   pid_t pid = -1;
   int restarts = 0;
   int64_t restart_at = 0;  // monotonic us; 0 = none pending
+  std::unique_ptr<NotifySocket> notify;  // watched services only
+  bool ready = false;          // READY=1 from this instance: its watchdog runs
+  int64_t last_ping = 0;       // monotonic us of its last READY/WATCHDOG
+  int64_t frozen_since = 0;    // the last ping of an instance the watchdog killed; 0 = none (for the report)
 };
 
 std::string find_binary(const std::string& word, const std::string& bin_dir) {
@@ -45,18 +57,61 @@ std::string find_binary(const std::string& word, const std::string& bin_dir) {
 }
 
 pid_t spawn(const Child& c) {
+  // Everything the child needs is built before fork(): between fork and exec only async-signal-safe calls.
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(c.path.c_str()));
+  for (size_t i = 1; i < c.spec.command.size(); ++i) argv.push_back(const_cast<char*>(c.spec.command[i].c_str()));
+  argv.push_back(nullptr);
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "NOTIFY_SOCKET=", 14) != 0 && std::strncmp(*e, "WATCHDOG_", 9) != 0) env_text.push_back(*e);
+  if (c.notify) {
+    // No WATCHDOG_PID: the child's pid is not known before fork, and sd_watchdog_enabled() accepts its absence.
+    env_text.push_back("NOTIFY_SOCKET=" + c.notify->address());
+    env_text.push_back("WATCHDOG_USEC=" + std::to_string(seconds_to_utime(c.spec.watchdog_s)));
+  }
+  std::vector<char*> envp;
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);  // own group: the terminal's Ctrl-C reaches the launcher, which stops children in order
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(c.path.c_str()));
-    for (size_t i = 1; i < c.spec.command.size(); ++i) argv.push_back(const_cast<char*>(c.spec.command[i].c_str()));
-    argv.push_back(nullptr);
-    execv(c.path.c_str(), argv.data());
-    std::fprintf(stderr, "gpilot-launch: cannot exec %s: %s\n", c.path.c_str(), std::strerror(errno));
+    // The launcher gone (kill -9, a crash), the stage stops too; checked again after the call in case the
+    // launcher died before it took effect.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(1);
+    execve(c.path.c_str(), argv.data(), envp.data());
+    const char* msg = "gpilot-launch: cannot exec a service\n";
+    if (write(2, msg, std::strlen(msg)) < 0) _exit(127);
     _exit(127);
   }
   return pid;
+}
+
+// The watchdog of one watched child: reads its notify datagrams; once it has said READY=1, silence longer
+// than watchdog_s is a frozen process: SIGKILL (a stopped process takes no other signal), and the restart
+// follows from waitpid. Prints how long from its last ping to the restarted instance's READY=1.
+void watch(Child& c, int64_t now, BusNode& node) {
+  if (!c.notify || c.pid <= 0) return;
+  const NotifyState s = c.notify->poll(c.pid);
+  if (s.any()) c.last_ping = now;
+  if (s.ready && !c.ready) {
+    c.ready = true;
+    if (c.frozen_since) {
+      std::fprintf(stderr, "gpilot-launch: %s ready again %.2f s after its last watchdog ping\n", c.spec.name.c_str(),
+                   (now - c.frozen_since) * 1e-6);
+      c.frozen_since = 0;
+    }
+  }
+  if (s.stopping) c.ready = false;  // on its way out (STOPPING=1): silence is expected now
+  if (!c.ready || now - c.last_ping <= seconds_to_utime(c.spec.watchdog_s)) return;
+  std::fprintf(stderr, "gpilot-launch: %s sent no watchdog ping for %.2f s (watchdog_s %.2f): frozen, SIGKILL\n",
+               c.spec.name.c_str(), (now - c.last_ping) * 1e-6, c.spec.watchdog_s);
+  node.set_state(health_t::STATE_DEGRADED, c.spec.name + " frozen: killed by the watchdog");
+  kill(c.pid, SIGKILL);
+  c.ready = false;
+  c.frozen_since = c.last_ping;
 }
 
 void stop_child(Child& c) {
@@ -139,7 +194,10 @@ int main(int argc, char** argv) {
     std::vector<Child> children;
     for (const auto& s : specs) {
       if (!service_wanted(s, vars)) continue;
-      Child c{s, find_binary(s.command[0], bin_dir)};
+      Child c;
+      c.spec = s;
+      c.path = find_binary(s.command[0], bin_dir);
+      if (s.watchdog_s > 0) c.notify = std::make_unique<NotifySocket>(s.name);
       if (c.path.empty()) {
         if (s.optional) {
           std::fprintf(stderr, "gpilot-launch: %s: not built, skipped\n", s.name.c_str());
@@ -161,6 +219,7 @@ int main(int argc, char** argv) {
     node.every(0.05, [&] {
       const int64_t now = monotonic_utime();
       for (auto& c : children) {
+        watch(c, now, node);
         int status = 0;
         if (c.pid > 0 && waitpid(c.pid, &status, WNOHANG) == c.pid) {
           c.pid = -1;
@@ -174,7 +233,8 @@ int main(int argc, char** argv) {
             return;
           }
           if (c.spec.respawn) {
-            c.restart_at = now + kMicrosPerSecond / 2;
+            // After a crash, half a second (no busy restart loop); a frozen stage is back at once.
+            c.restart_at = c.frozen_since ? now : now + kMicrosPerSecond / 2;
             std::fprintf(stderr, "gpilot-launch: %s %s: restarting\n", c.spec.name.c_str(), how.c_str());
           } else {
             std::fprintf(stderr, "gpilot-launch: %s %s (not restarted)\n", c.spec.name.c_str(), how.c_str());
@@ -183,6 +243,7 @@ int main(int argc, char** argv) {
         }
         if (c.pid < 0 && c.restart_at > 0 && now >= c.restart_at) {
           c.restart_at = 0;
+          c.ready = false;
           c.pid = spawn(c);
           ++c.restarts;
           node.set_state(health_t::STATE_OK, "restarted " + c.spec.name + " (" + std::to_string(c.restarts) + "x)");

@@ -19,6 +19,10 @@ struct ServiceSpec {
   bool ends_run = false;             //!< its exit (status 0) ends the whole run
   bool optional = false;             //!< skip with a message when its binary is missing
   std::vector<std::string> only_if;  //!< started only when each named variable is non-empty
+  // > 0: the process must tell it is alive (sd_notify WATCHDOG=1) at least this often once it said READY=1;
+  // a process silent for longer is killed and restarted. systemd: Type=notify + WatchdogSec; gpilot-launch:
+  // the same protocol on a NOTIFY_SOCKET of its own (notify_socket.hpp).
+  double watchdog_s = 0;
 };
 
 class ServiceSetError : public std::runtime_error {
@@ -37,7 +41,8 @@ std::string substitute(const std::string& text, const std::map<std::string, std:
 bool service_wanted(const ServiceSpec& spec, const std::map<std::string, std::string>& vars);
 
 // A systemd unit for one service: ExecStart from bin_dir, Restart from respawn, KillSignal, TimeoutStopSec,
-// ordered After= the service before it.
+// ordered After= the service before it; with watchdog_s, Type=notify and WatchdogSec (systemd then kills a
+// process that stops pinging, WatchdogSignal=SIGKILL, and Restart= brings it back).
 std::string systemd_unit(const ServiceSpec& spec, const std::string& bin_dir, const std::string& after,
                          const std::string& lcm_url);
 

@@ -15,6 +15,8 @@ constexpr MessageInfo kMessages[] = {
     {CommandAck::kId, "COMMAND_ACK", 143, 10},
     {SetPositionTargetLocalNed::kId, "SET_POSITION_TARGET_LOCAL_NED", 143, 53},
     {ExtendedSysState::kId, "EXTENDED_SYS_STATE", 130, 2},
+    {ParamRequestRead::kId, "PARAM_REQUEST_READ", 214, 20},
+    {ParamValue::kId, "PARAM_VALUE", 220, 25},
 };
 
 }  // namespace
@@ -74,6 +76,23 @@ std::vector<uint8_t> pack(const SetPositionTargetLocalNed& m) {
 std::vector<uint8_t> pack(const ExtendedSysState& m) {
   std::vector<uint8_t> p;
   Writer(p).u8(m.vtol_state).u8(m.landed_state);
+  return p;
+}
+
+std::vector<uint8_t> pack(const ParamRequestRead& m) {
+  std::vector<uint8_t> p;
+  Writer w(p);
+  w.u16(static_cast<uint16_t>(m.param_index)).u8(m.target_system).u8(m.target_component);
+  for (char c : m.param_id) w.u8(static_cast<uint8_t>(c));
+  return p;
+}
+
+std::vector<uint8_t> pack(const ParamValue& m) {
+  std::vector<uint8_t> p;
+  Writer w(p);
+  w.f32(m.param_value).u16(m.param_count).u16(m.param_index);
+  for (char c : m.param_id) w.u8(static_cast<uint8_t>(c));
+  w.u8(m.param_type);
   return p;
 }
 
@@ -166,6 +185,33 @@ ExtendedSysState unpack_extended_sys_state(const std::vector<uint8_t>& p) {
   m.vtol_state = r.u8();
   m.landed_state = r.u8();
   return m;
+}
+
+ParamRequestRead unpack_param_request_read(const std::vector<uint8_t>& p) {
+  Reader r(p);
+  ParamRequestRead m;
+  m.param_index = static_cast<int16_t>(r.u16());
+  m.target_system = r.u8();
+  m.target_component = r.u8();
+  for (char& c : m.param_id) c = static_cast<char>(r.u8());
+  return m;
+}
+
+ParamValue unpack_param_value(const std::vector<uint8_t>& p) {
+  Reader r(p);
+  ParamValue m;
+  m.param_value = r.f32();
+  m.param_count = r.u16();
+  m.param_index = r.u16();
+  for (char& c : m.param_id) c = static_cast<char>(r.u8());
+  m.param_type = r.u8();
+  return m;
+}
+
+std::string param_name(const char (&id)[16]) {
+  size_t n = 0;
+  while (n < sizeof id && id[n] != 0) ++n;
+  return std::string(id, n);
 }
 
 }  // namespace gpilot::mavlink

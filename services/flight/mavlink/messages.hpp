@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gpilot::mavlink {
@@ -79,6 +80,23 @@ struct ExtendedSysState {  // id 245
   uint8_t landed_state = 0;  //!< MAV_LANDED_STATE (same values as vehicle_state_t::LANDED_*)
 };
 
+struct ParamRequestRead {  // id 20
+  static constexpr uint32_t kId = 20;
+  int16_t param_index = -1;  //!< -1: look the parameter up by param_id
+  uint8_t target_system = 0;
+  uint8_t target_component = 0;
+  char param_id[16] = {};    //!< not NUL-terminated when 16 characters long
+};
+
+struct ParamValue {  // id 22
+  static constexpr uint32_t kId = 22;
+  float param_value = 0;
+  uint16_t param_count = 0;
+  uint16_t param_index = 0;
+  char param_id[16] = {};
+  uint8_t param_type = 0;  //!< MAV_PARAM_TYPE (9: REAL32)
+};
+
 // Payload bytes of a message, full length (the frame encoder cuts trailing zeros).
 std::vector<uint8_t> pack(const Heartbeat& m);
 std::vector<uint8_t> pack(const Attitude& m);
@@ -87,6 +105,8 @@ std::vector<uint8_t> pack(const CommandLong& m);
 std::vector<uint8_t> pack(const CommandAck& m);
 std::vector<uint8_t> pack(const SetPositionTargetLocalNed& m);
 std::vector<uint8_t> pack(const ExtendedSysState& m);
+std::vector<uint8_t> pack(const ParamRequestRead& m);
+std::vector<uint8_t> pack(const ParamValue& m);
 
 // From a payload of any length up to the full one (missing bytes read as zeros).
 Heartbeat unpack_heartbeat(const std::vector<uint8_t>& p);
@@ -96,6 +116,10 @@ CommandLong unpack_command_long(const std::vector<uint8_t>& p);
 CommandAck unpack_command_ack(const std::vector<uint8_t>& p);
 SetPositionTargetLocalNed unpack_set_position_target_local_ned(const std::vector<uint8_t>& p);
 ExtendedSysState unpack_extended_sys_state(const std::vector<uint8_t>& p);
+ParamRequestRead unpack_param_request_read(const std::vector<uint8_t>& p);
+ParamValue unpack_param_value(const std::vector<uint8_t>& p);
+// A param_id as text (up to its first NUL, at most 16 characters).
+std::string param_name(const char (&id)[16]);
 
 // The constants gpilot uses (from the MAVLink common set).
 constexpr uint8_t kMavTypeOnboardController = 18;
@@ -110,6 +134,7 @@ constexpr uint16_t kMavCmdDoSetMode = 176;
 constexpr uint16_t kMavCmdComponentArmDisarm = 400;
 constexpr uint8_t kPx4CustomMainModeOffboard = 6;
 constexpr uint8_t kArduCopterModeGuided = 4;
+constexpr uint8_t kMavParamTypeReal32 = 9;
 // Velocity and yaw rate only: ignore position (1|2|4), acceleration (64|128|256) and yaw (1024).
 constexpr uint16_t kTypeMaskVelocityYawRate = 1 | 2 | 4 | 64 | 128 | 256 | 1024;
 

@@ -79,6 +79,15 @@ std::vector<uint8_t> MavlinkSession::engage_mode() {
   return command_long(kMavCmdDoSetMode, {kMavModeFlagCustomModeEnabled, mode, 0, 0, 0, 0, 0});
 }
 
+std::vector<uint8_t> MavlinkSession::param_request_read(const std::string& name) {
+  ParamRequestRead m;
+  m.param_index = -1;
+  m.target_system = static_cast<uint8_t>(params_.target_system);
+  m.target_component = static_cast<uint8_t>(params_.target_component);
+  for (size_t i = 0; i < name.size() && i < sizeof m.param_id; ++i) m.param_id[i] = name[i];
+  return frame(m);
+}
+
 std::optional<VehicleState> MavlinkSession::on_datagram(const uint8_t* data, size_t n, int64_t receive_utime) {
   std::optional<VehicleState> out;
   parser_.feed(data, n, [&](const Frame& f) {
@@ -110,6 +119,7 @@ std::optional<VehicleState> MavlinkSession::on_datagram(const uint8_t* data, siz
         break;
       }
       case CommandAck::kId: last_ack_ = unpack_command_ack(f.payload); break;
+      case ParamValue::kId: param_values_.push_back(unpack_param_value(f.payload)); break;
       case LocalPositionNed::kId: {
         const LocalPositionNed p = unpack_local_position_ned(f.payload);
         state_.position[0] = p.x;

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "../flight_params.hpp"
@@ -29,6 +31,8 @@ class MavlinkSession {
   // The mode that follows our setpoints: PX4 OFFBOARD or ArduPilot GUIDED.
   std::vector<uint8_t> engage_mode();
   bool ardupilot() const { return params_.autopilot == "ardupilot"; }
+  // PARAM_REQUEST_READ of one parameter by name (the offboard-loss check on ENGAGE: offboard_loss.hpp).
+  std::vector<uint8_t> param_request_read(const std::string& name);
 
   // One received datagram: the latest vehicle state if a LOCAL_POSITION_NED from the target system was in it.
   std::optional<VehicleState> on_datagram(const uint8_t* data, size_t n, int64_t receive_utime);
@@ -37,6 +41,8 @@ class MavlinkSession {
   int64_t other_system() const { return other_system_; }  //!< valid frames from another system id, ignored
   bool heard_autopilot() const { return heard_; }
   std::optional<CommandAck> last_ack() const { return last_ack_; }
+  // The PARAM_VALUEs from the autopilot since the last call, oldest first.
+  std::vector<ParamValue> take_param_values() { return std::exchange(param_values_, {}); }
 
  private:
   template <class M>
@@ -53,6 +59,7 @@ class MavlinkSession {
   int64_t other_system_ = 0;
   bool heard_ = false;
   std::optional<CommandAck> last_ack_;
+  std::vector<ParamValue> param_values_;
 };
 
 }  // namespace gpilot::mavlink
