@@ -78,20 +78,46 @@ std::string json_string(const std::string& s) {
 
 RunAnalyzer::RunAnalyzer(int buffer_size) : buffer_size_(std::max(1, buffer_size)) {}
 
+int64_t Summary::logger_lost() const {
+  int64_t n = 0;
+  for (const auto& [channel, g] : gaps)
+    if (g.counter) n += g.missing;
+  return n;
+}
+
+void RunAnalyzer::note_seq(const std::string& channel, bool counter, const std::string& publisher, int64_t seq) {
+  ChannelGaps& g = gaps_[channel];
+  g.counter = counter;
+  ++g.messages;
+  const auto key = std::make_pair(channel, publisher);
+  const auto it = last_seq_.find(key);
+  if (it == last_seq_.end() || seq <= it->second) {
+    ++g.streams;  // the first message, or a restarted publisher (its seq starts again)
+  } else if (seq > it->second + 1) {
+    g.missing += seq - it->second - 1;
+  }
+  last_seq_[key] = seq;
+}
+
+void RunAnalyzer::on_hands(const hand_obs_t& m, int64_t) { note_seq("HAND_OBS", false, "", m.seq); }
+
 void RunAnalyzer::on_camera(const image_t& m, int64_t recv_utime) {
   if (frames_ == 0) first_frame_utime_ = m.utime;
   last_frame_utime_ = std::max(last_frame_utime_, m.utime);
   ++frames_;
   frames_by_seq_[m.seq] = FrameTimes{m.utime, recv_utime};
+  note_seq("CAMERA", true, "", m.seq);
 }
 
 void RunAnalyzer::on_track(const user_track_t& m, int64_t) {
   ++track_frames_;
+  note_seq("USER_TRACK", false, "", m.seq);
   if (m.status >= 0 && m.status < 3) ++track_by_status_[static_cast<size_t>(m.status)];
 }
 
 void RunAnalyzer::on_command(const gesture_cmd_t& m, int64_t recv_utime) {
   ++commands_;
+  note_seq("GESTURE_CMD", false, "", m.seq);
   if (valid_mode(m.mode)) ++commands_by_mode_[static_cast<size_t>(m.mode)];
   command_mode_by_seq_[m.seq] = m.mode;
   current_mode_ = m.mode;
@@ -115,6 +141,7 @@ void RunAnalyzer::on_setpoint(const flight_setpoint_t& m, int64_t recv_utime) {
 
 void RunAnalyzer::on_vehicle(const vehicle_state_t& m, int64_t recv_utime) {
   if (first_vehicle_recv_ < 0) first_vehicle_recv_ = recv_utime;
+  note_seq("VEHICLE_STATE", true, std::to_string(m.source), m.seq);
   TrajectoryPoint p{};
   p.t_s = (recv_utime - first_vehicle_recv_) * 1e-6;
   p.north = m.position[0];
@@ -129,13 +156,17 @@ void RunAnalyzer::on_vehicle(const vehicle_state_t& m, int64_t recv_utime) {
 }
 
 void RunAnalyzer::on_truth(const ground_truth_t& m, int64_t) {
+  note_seq("GROUND_TRUTH", true, "", m.seq);
   expected_mode_by_seq_[m.seq] = m.expected_mode;
   has_person_ = true;
   person_n_ = m.person_position[0];
   person_e_ = m.person_position[1];
 }
 
-void RunAnalyzer::on_health(const health_t& m, int64_t) { health_[m.name].push_back(m); }
+void RunAnalyzer::on_health(const health_t& m, int64_t) {
+  health_[m.name].push_back(m);
+  note_seq("HEALTH", true, m.name + " " + std::to_string(m.pid), m.seq);
+}
 
 Summary RunAnalyzer::summary() const {
   Summary s;
@@ -207,6 +238,7 @@ Summary RunAnalyzer::summary() const {
       ++a.confusion[static_cast<size_t>(expected)][static_cast<size_t>(c->second)];
   }
 
+  s.gaps = gaps_;
   s.vehicle_states = static_cast<int64_t>(path_.size());
   for (size_t i = 1; i < path_.size(); ++i)
     s.path_length_m += std::sqrt(std::pow(path_[i].north - path_[i - 1].north, 2) +
@@ -271,7 +303,21 @@ std::string summary_json(const Summary& s, const std::vector<std::pair<std::stri
     j += "]";
   }
   j += "]}\n  },\n";
-  j += "  \"vehicle\": {\"states\": " + num(s.vehicle_states) + ", \"path_length_m\": " + num(s.path_length_m) + "}\n";
+  j += "  \"vehicle\": {\"states\": " + num(s.vehicle_states) + ", \"path_length_m\": " + num(s.path_length_m) + "},\n";
+  j += "  \"log_gaps\": {\n    \"logger_lost\": " + num(s.logger_lost()) + ",\n    \"channels\": {";
+  bool first_gap = true;
+  for (const auto& [channel, g] : s.gaps) {
+    j += std::string(first_gap ? "" : ",") + "\n      " + json_string(channel) + ": {\"messages\": " + num(g.messages) +
+         ", \"missing\": " + num(g.missing) + ", \"streams\": " + num(g.streams) +
+         ", \"a_gap_is\": " + json_string(g.counter ? "lost by the logger" : "skipped by a stage (HEALTH.dropped) or lost by the logger") + "}";
+    first_gap = false;
+  }
+  j += std::string(s.gaps.empty() ? "" : "\n    ") + "},\n";
+  j += "    \"definition\": " +
+       json_string("per channel, seq values skipped inside each publisher's stream (a seq going back starts a new "
+                   "stream); logger_lost sums the channels where every seq is one message sent (CAMERA, GROUND_TRUTH, "
+                   "VEHICLE_STATE, HEALTH per process)") +
+       "\n  }\n";
   j += "}\n";
   return j;
 }
@@ -301,12 +347,17 @@ std::string summary_table(const Summary& s) {
   lat("frame utime -> FLIGHT_SETPOINT", s.latency_setpoint);
   lat("CAMERA receipt -> GESTURE_CMD", s.pipeline_cmd);
   lat("CAMERA receipt -> FLIGHT_SETPOINT", s.pipeline_setpoint);
-  line("\n%-18s %7s %9s %9s %9s %9s %9s %8s\n", "stage", "reports", "Hz last", "Hz med", "p50 ms", "p99 ms",
-       "rejected", "state");
+  line("\n%-18s %7s %9s %9s %9s %9s %9s %9s %8s\n", "stage", "reports", "Hz last", "Hz med", "p50 ms", "p99 ms",
+       "rejected", "dropped", "state");
   for (const auto& h : s.stages)
-    line("%-18s %7lld %9.1f %9.1f %9.2f %9.2f %9lld %8s\n", h.name.c_str(), static_cast<long long>(h.reports),
+    line("%-18s %7lld %9.1f %9.1f %9.2f %9.2f %9lld %9lld %8s\n", h.name.c_str(), static_cast<long long>(h.reports),
          h.rate_out_last_hz, h.rate_out_median_hz, h.processing_p50_ms, h.processing_p99_ms,
-         static_cast<long long>(h.rejected), health_state_name(h.last_state));
+         static_cast<long long>(h.rejected), static_cast<long long>(h.dropped), health_state_name(h.last_state));
+  line("\nnot in the log     %lld lost by the logger;", static_cast<long long>(s.logger_lost()));
+  for (const auto& [channel, g] : s.gaps)
+    line(" %s %lld/%lld%s", channel.c_str(), static_cast<long long>(g.missing),
+         static_cast<long long>(g.messages + g.missing), g.counter ? "" : "*");
+  t += s.gaps.empty() ? "\n" : "\n                   (* gaps there are also frames a stage skipped: see dropped)\n";
   const Accuracy& a = s.accuracy;
   t += "\n";
   if (a.has_value())

@@ -14,6 +14,7 @@
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
+#include "gpilot/hand_obs_t.hpp"
 #include "gpilot/health_t.hpp"
 #include "gpilot/image_t.hpp"
 #include "gpilot/user_track_t.hpp"
@@ -55,6 +56,18 @@ struct Accuracy {
   std::array<std::array<int64_t, kModes>, kModes> confusion{};  // [expected][decided]
 };
 
+// Messages of one channel that are not in the log, from the gaps in seq of each publisher's stream (a seq
+// that goes back starts a new stream: a restarted process). On a counter channel (CAMERA, GROUND_TRUTH,
+// VEHICLE_STATE, HEALTH per process) every seq is one message sent, so a gap is a message the logger lost;
+// on a frame channel (USER_TRACK, HAND_OBS, GESTURE_CMD: the seq of the frame) a gap is a frame the stage
+// or one before it skipped (their HEALTH.dropped) or a message the logger lost.
+struct ChannelGaps {
+  bool counter = false;   // a gap is a logger loss
+  int64_t messages = 0;   // in the log
+  int64_t missing = 0;    // seq values skipped inside streams
+  int64_t streams = 0;    // publishers or restarts seen
+};
+
 struct Summary {
   int64_t frames = 0;
   double duration_s = 0;  // first to last CAMERA utime
@@ -70,6 +83,8 @@ struct Summary {
   Accuracy accuracy;
   int64_t vehicle_states = 0;
   double path_length_m = 0;
+  std::map<std::string, ChannelGaps> gaps;  // by channel
+  int64_t logger_lost() const;              // missing on counter channels: messages the logger lost
 };
 
 // The vehicle's path for the plot: one point per VEHICLE_STATE.
@@ -95,6 +110,7 @@ class RunAnalyzer {
   void on_vehicle(const vehicle_state_t& m, int64_t recv_utime);
   void on_truth(const ground_truth_t& m, int64_t recv_utime);
   void on_health(const health_t& m, int64_t recv_utime);
+  void on_hands(const hand_obs_t& m, int64_t recv_utime);  // counted for the gaps only
 
   Summary summary() const;
   const std::vector<TrajectoryPoint>& trajectory() const { return path_; }
@@ -120,6 +136,10 @@ class RunAnalyzer {
   bool has_person_ = false;
   double person_n_ = 0, person_e_ = 0;
   int64_t first_vehicle_recv_ = -1;
+  // Gaps: the last seq of each (channel, publisher) stream.
+  void note_seq(const std::string& channel, bool counter, const std::string& publisher, int64_t seq);
+  std::map<std::string, ChannelGaps> gaps_;
+  std::map<std::pair<std::string, std::string>, int64_t> last_seq_;
 };
 
 // One JSON object; `extra` members (already JSON) are added at the top level (log file, warnings ...).

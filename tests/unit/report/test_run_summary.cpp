@@ -14,7 +14,7 @@ Summary analyse(const test::SyntheticRun& run, int buffer_size, std::vector<Traj
   const test::ScratchDir dir("gpilot_run_summary");
   test::write_synthetic_log(dir / "run.lcmlog", run);
   LogAnalysis a = analyse_log(dir / "run.lcmlog", buffer_size);
-  EXPECT_TRUE(a.warnings.empty());
+  EXPECT_TRUE(a.warnings.empty()) << (a.warnings.empty() ? "" : a.warnings[0]);
   if (path) *path = a.path;
   return a.summary;
 }
@@ -130,6 +130,78 @@ TEST(RunSummaryJson, IsOneObjectWithTheKeysTheLeadReads) {
                           "\"accuracy\"", "\"rule\"", "\"confusion\"", "\"vehicle\""})
     EXPECT_NE(j.find(key), std::string::npos) << key;
   EXPECT_NE(j.find("\"log\": \"a \\\"b\\\"\\n\""), std::string::npos) << j;
+}
+
+// The log's losses: gaps in seq per publisher's stream. GIVEN known gaps WHEN summarised THEN counted per
+// channel; only counter channels (one message per seq) make the logger's loss; a restart is a new stream.
+TEST(RunSummaryGaps, MessagesMissingFromTheLogPerChannel) {
+  RunAnalyzer a(60);
+  auto camera = [&](int64_t seq) {
+    image_t m{};
+    m.seq = seq;
+    m.utime = 1000 + seq;
+    a.on_camera(m, 2000 + seq);
+  };
+  for (int64_t seq : {0, 1, 2, 5, 6, 8, 9}) camera(seq);  // 3, 4 and 7 lost
+  for (int64_t seq : {0, 1, 2}) camera(seq);              // capture restarted: a new stream, no gap
+  auto health = [&](const char* name, int32_t pid, int64_t seq) {
+    health_t h{};
+    h.name = name;
+    h.pid = pid;
+    h.seq = seq;
+    a.on_health(h, 0);
+  };
+  health("gpilot-tracker", 10, 0);
+  health("gpilot-hands", 20, 0);  // another process between the tracker's reports: not a gap
+  health("gpilot-tracker", 10, 1);
+  health("gpilot-tracker", 10, 3);  // 2 lost
+  health("gpilot-tracker", 11, 0);  // restarted
+  health("gpilot-tracker", 11, 1);
+  health("gpilot-hands", 20, 1);
+  for (int64_t seq : {0, 1, 2, 5}) {  // 3, 4: skipped by the tracker, or lost
+    user_track_t t{};
+    t.seq = seq;
+    a.on_track(t, 0);
+  }
+  for (int64_t seq : {1, 3, 4}) {
+    vehicle_state_t v{};
+    v.seq = seq;
+    a.on_vehicle(v, 0);
+  }
+  const Summary s = a.summary();
+  ASSERT_EQ(s.gaps.count("CAMERA"), 1u);
+  EXPECT_EQ(s.gaps.at("CAMERA").messages, 10);
+  EXPECT_EQ(s.gaps.at("CAMERA").missing, 3);
+  EXPECT_EQ(s.gaps.at("CAMERA").streams, 2);
+  EXPECT_TRUE(s.gaps.at("CAMERA").counter);
+  EXPECT_EQ(s.gaps.at("HEALTH").messages, 7);
+  EXPECT_EQ(s.gaps.at("HEALTH").missing, 1);
+  EXPECT_EQ(s.gaps.at("HEALTH").streams, 3);
+  EXPECT_EQ(s.gaps.at("USER_TRACK").missing, 2);
+  EXPECT_FALSE(s.gaps.at("USER_TRACK").counter);
+  EXPECT_EQ(s.gaps.at("VEHICLE_STATE").missing, 1);
+  EXPECT_EQ(s.logger_lost(), 3 + 1 + 1);  // not USER_TRACK's 2
+
+  const std::string j = summary_json(s);
+  EXPECT_NE(j.find("\"logger_lost\": 5"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"CAMERA\": {\"messages\": 10, \"missing\": 3, \"streams\": 2, \"a_gap_is\": \"lost by the logger\"}"),
+            std::string::npos) << j;
+  const std::string t = summary_table(s);
+  EXPECT_NE(t.find("5 lost by the logger; CAMERA 3/13"), std::string::npos) << t;
+  EXPECT_NE(t.find("USER_TRACK 2/6*"), std::string::npos) << t;
+}
+
+TEST(RunSummaryGaps, NoGapsNoLoss) {
+  RunAnalyzer a(60);
+  for (int64_t seq = 0; seq < 5; ++seq) {
+    image_t m{};
+    m.seq = seq;
+    a.on_camera(m, 0);
+  }
+  const Summary s = a.summary();
+  EXPECT_EQ(s.gaps.at("CAMERA").missing, 0);
+  EXPECT_EQ(s.logger_lost(), 0);
+  EXPECT_NE(summary_json(s).find("\"logger_lost\": 0"), std::string::npos);
 }
 
 }  // namespace
