@@ -72,6 +72,16 @@ std::string check_user_box(const char* name, const float* box, int image_width, 
   return "";
 }
 
+// A track's user box: a box by check_user_box, or all zero while searching (no user yet). Decide copies the
+// width of any box into its command, so a searching track's box is held to the same rules.
+// A box is only meaningful in an image of known size (hands publishes the box with its frame's size: the
+// fuzzer found a track without one whose box then failed decide's check).
+std::string check_track_box(const char* name, const float* box, int status, int image_width, int image_height) {
+  if (status == user_track_t::STATUS_SEARCHING && box[0] == 0 && box[1] == 0 && box[2] == 0 && box[3] == 0) return "";
+  if (image_width <= 0 || image_height <= 0) return std::string(name) + " without an image size";
+  return check_user_box(name, box, image_width, image_height);
+}
+
 std::string check_image_size(int width, int height) {
   if (width < 0 || height < 0) return "negative image size";
   if (width > kMaxImageSide || height > kMaxImageSide)
@@ -126,8 +136,7 @@ std::string check_message(const user_track_t& m) {
                 Finite()("box", m.box, 4)("confidence", m.confidence)("face_box", m.face_box, 4).reason,
                 check_box("box", m.box), check_box("face_box", m.face_box),
                 check_image_size(m.image_width, m.image_height),
-                m.status != user_track_t::STATUS_SEARCHING ? check_user_box("box", m.box, m.image_width, m.image_height)
-                                                           : "",
+                check_track_box("box", m.box, m.status, m.image_width, m.image_height),
                 check_optional_box_in_image("face_box", m.face_box, m.image_width, m.image_height)});
 }
 
@@ -139,9 +148,7 @@ std::string check_message(const hand_obs_t& m) {
                     .reason,
                 check_box("user_box", m.user_box), check_box("hand_box", m.hand_box),
                 check_image_size(m.image_width, m.image_height),
-                m.track_status != user_track_t::STATUS_SEARCHING
-                    ? check_user_box("user_box", m.user_box, m.image_width, m.image_height)
-                    : "",
+                check_track_box("user_box", m.user_box, m.track_status, m.image_width, m.image_height),
                 m.hand_skin < 0 || m.skin_outside < 0 || m.skin_inside < 0 ? "negative skin count" : "",
                 m.skin_user_samples < 0 || m.skin_scene_samples < 0 ? "negative skin sample count" : "",
                 !(m.skin_changed >= 0 && m.skin_changed <= 1) ? "skin_changed not in 0..1" : ""});

@@ -68,6 +68,19 @@ hand_obs_t observe(HandObserver& observer, const image_t& frame, const user_trac
 
 }  // namespace
 
+std::string hands_on_pair(HandObserver& observer, const image_t& frame, const user_track_t& track,
+                          const ImageLimits& limits, hand_obs_t& obs) {
+  cv::Mat bgr;
+  const std::string why = image_to_mat(frame, bgr, limits);
+  if (!why.empty()) return "CAMERA seq " + std::to_string(frame.seq) + ": " + why;
+  if (bgr.type() != CV_8UC3) return "CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8";
+  if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
+    return "USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) + "x" +
+           std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
+           std::to_string(bgr.rows);
+  obs = observe(observer, frame, track, bgr);
+  return "";
+}
 
 std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   struct State {
@@ -93,15 +106,10 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
       node.reject("USER_TRACK without a CAMERA frame of the same seq (dropped after hands.match_window seqs)");
     if (!pair) return;
     const auto& [frame, track] = *pair;
-    cv::Mat bgr;
-    const std::string why = image_to_mat(frame, bgr, limits);
-    if (!why.empty()) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": " + why);
-    if (bgr.type() != CV_8UC3) return node.reject("CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8");
-    if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
-      return node.reject("USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) +
-                         "x" + std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
-                         std::to_string(bgr.rows));
-    node.publish("HAND_OBS", observe(observer, frame, track, bgr));
+    hand_obs_t obs;
+    const std::string why = hands_on_pair(observer, frame, track, limits, obs);
+    if (!why.empty()) return node.reject(why);
+    node.publish("HAND_OBS", obs);
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
   };
   node.subscribe<image_t>("CAMERA", [handle, &pairer](const image_t& m, int64_t) { handle(pairer.add_frame(m.seq, m)); });

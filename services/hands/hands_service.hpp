@@ -6,8 +6,18 @@
 
 #include "bus_node.hpp"
 #include "config.hpp"
+#include "gpilot/hand_obs_t.hpp"
+#include "gpilot/image_t.hpp"
+#include "gpilot/user_track_t.hpp"
+#include "hands/hand_observer.hpp"
+#include "image_codec_params.hpp"
 
 namespace gpilot {
+
+// One CAMERA frame and the USER_TRACK of the same seq through the stage (decode within limits, the sizes
+// agree, the observer): "" and the HAND_OBS to publish, or why the pair is rejected. The fuzz target uses it.
+std::string hands_on_pair(HandObserver& observer, const image_t& frame, const user_track_t& track,
+                          const ImageLimits& limits, hand_obs_t& obs);
 
 std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node);
 

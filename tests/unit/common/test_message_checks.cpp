@@ -60,7 +60,7 @@ TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
   hand_obs_t h{};
   h.user_box[2] = -1;
   EXPECT_EQ(check_message(h), "user_box has a negative size");
-  h.user_box[2] = 10;
+  h.user_box[2] = 0;
   h.skin_changed = 0.25f;
   EXPECT_EQ(check_message(h), "");
   h.skin_changed = NAN;
@@ -114,8 +114,11 @@ TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
   EXPECT_EQ(check_message(t), "face_box is outside the 640x480 image");
   t.face_box[0] = 601;
   EXPECT_EQ(check_message(t), "face_box is outside the 640x480 image");
-  t.image_width = 0;  // a face with no image size to be inside
+  t.image_width = 0;  // a box or a face with no image size to be inside
   t.face_box[0] = 0;
+  EXPECT_EQ(check_message(t), "box without an image size");
+  std::fill(t.box, t.box + 4, 0.0f);
+  t.status = user_track_t::STATUS_SEARCHING;
   EXPECT_EQ(check_message(t), "face_box is outside the 0x480 image");
 }
 
@@ -143,8 +146,12 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   std::copy(body, body + 4, t.box);
   t.box[0] = 1e9f;
   EXPECT_EQ(check_message(t), "box x 1e+09 is far outside 640 px image");
-  // While searching the box means nothing (the tracker sends zeros): not checked
+  // While searching there is no box (the tracker sends zeros); any other box is held to the same rules
+  // (decide copies its width into the command: the fuzzer's decide target found widths of 3.6e-40 and 2.5e17
+  // passing through a searching HAND_OBS into a GESTURE_CMD the flight stage then rejected)
   t.status = user_track_t::STATUS_SEARCHING;
+  EXPECT_EQ(check_message(t), "box x 1e+09 is far outside 640 px image");
+  std::fill(t.box, t.box + 4, 0.0f);
   EXPECT_EQ(check_message(t), "");
   t.image_width = 16385;
   EXPECT_EQ(check_message(t), "image size 16385x480 is larger than 16384 pixels a side");
@@ -171,6 +178,12 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   EXPECT_EQ(check_message(h), "");
   h.user_box[2] = 1e-45f;
   EXPECT_EQ(check_message(h), "user_box width 1.4013e-45 is below a pixel");
+  h.track_status = user_track_t::STATUS_SEARCHING;
+  h.user_box[2] = 3.67699e-40f;
+  EXPECT_EQ(check_message(h), "user_box width 3.67699e-40 is below a pixel");
+  h.user_box[2] = 120;
+  h.image_width = 0;  // hands publishes the track's box with its frame's size: the fuzzer found one without
+  EXPECT_EQ(check_message(h), "user_box without an image size");
 
   // A manual box: at least a pixel, at most 4 of the largest image
   tracker_init_t i{};

@@ -1,0 +1,75 @@
+// Fuzz target: the decide core (GestureDecider, the paper's Alg. 3 over the state buffers) fed a sequence of
+// HAND_OBS as check_message lets them through: times that step forward, stall, jump or go back, new users,
+// lost tracks, any kind and vector. Each input is one sequence on a fresh decider. Every command it publishes
+// must be a GESTURE_CMD that check_message accepts (what the flight stage takes).
+#include <cstdint>
+
+#include "decide/decide_params.hpp"
+#include "decide/gesture_decider.hpp"
+#include "fuzz_input.hpp"
+#include "message_checks.hpp"
+
+namespace {
+
+// HAND_OBS -> the core's observation, as gpilot-decide converts it.
+gpilot::HandObservation observation(const gpilot::hand_obs_t& m) {
+  gpilot::HandObservation o;
+  o.utime = m.utime;
+  o.seq = m.seq;
+  o.track_id = m.track_id;
+  o.tracking = m.track_status == gpilot::user_track_t::STATUS_TRACKING;
+  o.kind = static_cast<gpilot::HandObservation::Kind>(m.kind);
+  o.vector = {m.vector[0], m.vector[1]};
+  o.user_box_width = m.user_box[2];
+  return o;
+}
+
+// The command -> GESTURE_CMD, as gpilot-decide publishes it.
+gpilot::gesture_cmd_t message(const gpilot::GestureCommand& c) {
+  gpilot::gesture_cmd_t m{};
+  m.utime = c.utime;
+  m.seq = c.seq;
+  m.track_id = c.track_id;
+  m.mode = static_cast<int8_t>(c.mode);
+  for (int i = 0; i < 3; ++i) m.direction[i] = static_cast<float>(c.direction[i]);
+  m.user_box_width = static_cast<float>(c.user_box_width);
+  m.n_out = static_cast<int16_t>(c.n_out);
+  m.n_front_higher = static_cast<int16_t>(c.n_front_higher);
+  m.n_front_lower = static_cast<int16_t>(c.n_front_lower);
+  m.buffer_fill = static_cast<int16_t>(c.buffer_fill);
+  return m;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  gpilot::fuzz::Input in(data, size);
+  gpilot::DecideParams params;
+  if (in.flag()) params.buffer_size = static_cast<int>(in.in(1, 80)), params.out_threshold = static_cast<int>(in.in(0, 80)),
+                 params.front_threshold = static_cast<int>(in.in(0, 80));
+  gpilot::GestureDecider decider(params);
+  int64_t utime = 1'700'000'000'000'000 + in.in(0, 1'000'000);
+  for (int64_t seq = 0; seq < 200 && !in.empty(); ++seq) {
+    gpilot::hand_obs_t m{};
+    const uint8_t step = in.byte();
+    utime += step < 200 ? 33'333 : step < 240 ? in.in(-2'000'000, 2'000'000) : in.raw<int32_t>();
+    m.utime = utime;
+    m.seq = seq;
+    const uint8_t who = in.byte();
+    m.track_id = who < 240 ? 1 : static_cast<int32_t>(who % 4);
+    m.track_status = who < 230 ? gpilot::user_track_t::STATUS_TRACKING : static_cast<int8_t>(who % 3);
+    m.kind = static_cast<int8_t>(in.byte() % 3);
+    m.image_width = 640;
+    m.image_height = 480;
+    const float box[4] = {200, 40, 120 + in.coordinate() / 16.0f, 360};
+    for (int i = 0; i < 4; ++i) m.user_box[i] = box[i];
+    if (in.byte() >= 250) m.user_box[2] = in.f32();
+    m.vector[0] = in.coordinate() / 4.0f - 256.0f;
+    m.vector[1] = in.coordinate() / 4.0f - 256.0f;
+    if (!gpilot::check_message(m).empty()) continue;  // rejected by BusNode before the stage
+    const gpilot::GestureCommand c = decider.update(observation(m));
+    const std::string why = gpilot::check_message(message(c));
+    if (!why.empty()) gpilot::fuzz::fail("decide published a GESTURE_CMD that is rejected: " + why);
+  }
+  return 0;
+}
