@@ -8,18 +8,19 @@
 namespace gpilot {
 
 struct DecideParams {
-  std::string rule = "paper";   //!< paper: Alg. 3 over the buffers; evidence: EvidenceRule (evidence_rule.hpp)
+  std::string rule = "evidence";  //!< evidence: EvidenceRule (evidence_rule.hpp, measured: README); paper: Alg. 3
   int buffer_size = 60;         //!< observations kept in S_out and S_front (paper 60)
   int out_threshold = 30;       //!< FINE/UP/DOWN when more than this many non-zero S_out entries (paper 30)
   int front_threshold = 30;     //!< CLOSER/FURTHER when more than this many higher/lower S_front entries (paper 30)
   double lambda4 = 0.5;         //!< x := 0 when |y| > |lambda4 x| (paper 0.5)
   double gap_timeout_s = 0.5;   //!< a gap between observations longer than this empties the buffers
   // rule evidence (frames of evidence; see evidence_rule.hpp)
-  int evidence_enter = 6;       //!< a command is entered at this much evidence (a steady pose: this many frames)
+  int evidence_enter = 3;       //!< a command is entered at this much evidence (a steady pose: this many frames)
   int evidence_leave = 2;       //!< and left when its evidence falls to this
   int evidence_max = 10;        //!< evidence is capped here: letting go takes (max - leave) / decay frames
   double evidence_decay = 1.0;  //!< evidence lost per frame that does not support a command
-  double moving_ratio = 0.03;   //!< a hand moving more than this many box widths per frame is evidence for nothing
+  double moving_ratio = 0.05;   //!< a hand this many box widths from where it was in one of the last
+  int moving_frames = 3;        //!< this many frames is moving: evidence for nothing
   int direction_frames = 8;     //!< FINE/UP/DOWN direction: mean of the last this many supporting vectors
 
   template <class V>
@@ -36,7 +37,8 @@ struct DecideParams {
     v("evidence_leave", evidence_leave, 0, 1000, "evidence: a held command is left when its evidence falls to this");
     v("evidence_max", evidence_max, 1, 1000, "evidence: cap; letting go takes (max - leave) / decay frames");
     v("evidence_decay", evidence_decay, 0.0, 1000.0, "evidence: lost per frame that does not support a command");
-    v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: hand motion per frame, box widths, above which a frame supports nothing");
+    v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: a hand this many box widths from where it was in one of the last");
+    v("moving_frames", moving_frames, 1, 1000, "evidence: ... this many frames is moving and supports nothing");
     v("direction_frames", direction_frames, 1, 1000, "evidence: FINE/UP/DOWN direction is the mean of this many last vectors");
   }
 };

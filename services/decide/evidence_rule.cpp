@@ -22,18 +22,19 @@ EvidenceRule::Class EvidenceRule::classify(int kind, Vec2 v, double lambda4) {
 void EvidenceRule::reset() {
   evidence_.fill(0.0);
   current_ = kNone;
-  last_kind_ = 0;
-  last_vector_ = {};
+  history_.clear();
   for (auto& r : recent_) r.clear();
 }
 
 Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
   const Class c = classify(kind, vector, params_.lambda4);
-  // A hand far from where the same kind of hand was a frame ago is moving: no evidence for anything.
-  const bool moving = c != kNone && kind == last_kind_ &&
-                      std::hypot(vector.x - last_vector_.x, vector.y - last_vector_.y) > params_.moving_ratio * box_width;
-  last_kind_ = kind;
-  last_vector_ = vector;
+  // A hand far from where the same kind of hand was in a recent frame is moving: no evidence for anything.
+  bool moving = false;
+  for (const Seen& h : history_)
+    moving = moving || (c != kNone && h.kind == kind &&
+                        std::hypot(vector.x - h.vector.x, vector.y - h.vector.y) > params_.moving_ratio * box_width);
+  history_.push_back({kind, vector});
+  while (static_cast<int>(history_.size()) > params_.moving_frames) history_.pop_front();
   for (int k = 1; k < kClasses; ++k) {
     const bool support = k == c && !moving;
     evidence_[k] = std::clamp(evidence_[k] + (support ? 1.0 : -params_.evidence_decay), 0.0,

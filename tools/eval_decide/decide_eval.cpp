@@ -95,6 +95,19 @@ std::vector<TruthSegment> truth_segments(const std::vector<TruthFrame>& truth, c
     if (fine && !ref) ref = f.dir;
   }
   if (!segs.empty()) segs.back().end = truth.size();
+  // An arm on its way out sweeps through directions; a piece cut off by a turn that does not last is part of
+  // the OUT piece that follows it.
+  for (size_t k = 0; k + 1 < segs.size();) {
+    const bool both_out = truth[segs[k].begin].gesture == ground_truth_t::GESTURE_OUT &&
+                          truth[segs[k + 1].begin].gesture == ground_truth_t::GESTURE_OUT;
+    const int64_t length = truth[segs[k + 1].begin].utime - truth[segs[k].begin].utime;
+    if (both_out && length < static_cast<int64_t>(rules.min_turn_s * 1e6)) {
+      segs[k + 1].begin = segs[k].begin;
+      segs.erase(segs.begin() + static_cast<std::ptrdiff_t>(k));
+    } else {
+      ++k;
+    }
+  }
   for (auto& s : segs) {
     if (truth[s.begin].gesture == ground_truth_t::GESTURE_REST) continue;  // HOVER, seen
     std::map<int, int> votes;
@@ -140,9 +153,14 @@ Score score_commands(const std::vector<TruthFrame>& truth, const std::vector<Sco
       reacted = reacted || right;
       if (!right) ++s.wrong_frames;
       if (lag) ++s.old_frames;
-      const bool is_false = c.mode != kHover && c.mode != seg.mode && !(lag && c.mode == old_mode);
+      // The next gesture's command while the true hand already shows it (the label switches half-way through
+      // the arm's move, the paper's rules on the true hand may switch before) is early, not false.
+      const bool early = k + 1 < segs.size() && c.mode == segs[k + 1].mode && c.mode == truth[i].expected_mode;
+      const bool is_false = c.mode != kHover && c.mode != seg.mode && !(lag && c.mode == old_mode) && !early;
       if (is_false) {
         const bool onset = prev_false_mode != c.mode;
+        if (onset) s.false_list.push_back({truth[i].utime, seg.mode, c.mode, 0});
+        ++s.false_list.back().frames;
         if (seg.mode == kHover) {
           ++s.false_at_rest_frames;
           if (onset) ++s.false_at_rest;
@@ -156,6 +174,7 @@ Score score_commands(const std::vector<TruthFrame>& truth, const std::vector<Sco
     if (change) {
       ++s.changes;
       if (!reacted) ++s.missed;
+      s.change_list.push_back({truth[seg.begin].utime, old_mode, seg.mode, reacted ? s.reaction_frames.back() : -1});
     }
   }
   return s;
@@ -168,6 +187,8 @@ void Score::add(const Score& o) {
   missed += o.missed;
   reaction_us.insert(reaction_us.end(), o.reaction_us.begin(), o.reaction_us.end());
   reaction_frames.insert(reaction_frames.end(), o.reaction_frames.begin(), o.reaction_frames.end());
+  change_list.insert(change_list.end(), o.change_list.begin(), o.change_list.end());
+  false_list.insert(false_list.end(), o.false_list.begin(), o.false_list.end());
   old_frames += o.old_frames;
   wrong_frames += o.wrong_frames;
   false_at_rest += o.false_at_rest;

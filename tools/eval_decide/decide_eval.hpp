@@ -44,6 +44,8 @@ struct ScoredCommand {
 struct ScoreRules {
   double turn_deg = 30.0;       //!< an OUT gesture whose pointed direction turns more than this is a new gesture
   double fine_angle_deg = 30.0; //!< a FINE command within this angle of the truth's direction is the right one
+  double min_turn_s = 1.0;      //!< a turned piece of an OUT gesture shorter than this is the arm on its way to the
+                                //!< next piece: one gesture with it (its change is the true gesture's change)
 };
 
 // The truth of one frame, as the scoring needs it.
@@ -72,10 +74,14 @@ struct Score {
   int missed = 0;              //!< changes whose new command never came before the next change
   std::vector<int64_t> reaction_us;  //!< per change that got its command: change -> first right command
   std::vector<int> reaction_frames;
+  struct Change { int64_t utime; int from_mode, to_mode; int frames; };  //!< frames -1: missed
+  std::vector<Change> change_list;   //!< every scored change, in order (--changes)
+  std::vector<Change> false_list;    //!< every false or confused episode: truth's mode, commanded mode, frames
   int64_t old_frames = 0;      //!< frames from each change up to its first right command (the reaction)
   int64_t wrong_frames = 0;    //!< frames whose command is not the one the truth asks for (old ones included)
-  // A command nobody asked for: not HOVER, not the truth's, and not the previous gesture's command still held
-  // while the reaction runs. Counted in episodes (onsets) and frames.
+  // A command nobody asked for: not HOVER, not the truth's, not the previous gesture's command still held
+  // while the reaction runs, and not the next gesture's shown early by the true hand. Counted in episodes
+  // (onsets) and frames.
   int false_at_rest = 0;       //!< ... while the user rests
   int64_t false_at_rest_frames = 0;
   int confused = 0;            //!< ... while the user asks for another motion (CLOSER for FURTHER, UP for FINE)

@@ -18,6 +18,7 @@
 #include "config.hpp"
 #include "decide_eval.hpp"
 #include "log_reader.hpp"
+#include "overlay.hpp"
 #include "run_summary.hpp"
 #include "service_cli.hpp"
 
@@ -184,7 +185,7 @@ int main(int argc, char** argv) {
                  "tracker,hands, or a ./deploy/run log.");
   std::vector<std::string> logs, sweeps, variants;
   std::string plot_file;
-  bool json = false, no_paper = false, do_trace = false;
+  bool json = false, no_paper = false, do_trace = false, list_changes = false;
   ScoreRules rules;
   cli.app().add_option("logs", logs, "LCM logs with HAND_OBS and GROUND_TRUTH")->required();
   cli.app().add_option("--sweep", sweeps, "section.key=v1,v2,...: one configuration per value (several: every combination)");
@@ -193,7 +194,9 @@ int main(int argc, char** argv) {
   cli.app().add_flag("--json", json, "one JSON object on stdout instead of the table");
   cli.app().add_option("--plot", plot_file, "write a PNG of false commands per minute against median reaction time");
   cli.app().add_flag("--trace", do_trace, "print every frame of the first log for the first configuration, then stop");
+  cli.app().add_flag("--changes", list_changes, "list every true change with its reaction (per configuration and log)");
   cli.app().add_option("--turn-deg", rules.turn_deg, "an OUT gesture turning more than this is a new gesture")->capture_default_str();
+  cli.app().add_option("--min-turn-s", rules.min_turn_s, "a turned OUT piece shorter than this joins the next one")->capture_default_str();
   cli.app().add_option("--fine-angle-deg", rules.fine_angle_deg, "FINE within this angle of the truth is right")->capture_default_str();
   return cli.run(argc, argv, [&](const Config& config) -> int {
     // Configurations: the named variants, then every combination of the sweeps, else the config as given.
@@ -263,6 +266,7 @@ int main(int argc, char** argv) {
       std::string j = "{\n  \"logs\": [";
       for (size_t i = 0; i < logs.size(); ++i) j += (i ? ", " : "") + json_string(logs[i]);
       j += "],\n  \"rules\": {\"turn_deg\": " + num(rules.turn_deg) + ", \"fine_angle_deg\": " + num(rules.fine_angle_deg) +
+           ", \"min_turn_s\": " + num(rules.min_turn_s) +
            "},\n  \"configurations\": [";
       for (size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];
@@ -287,6 +291,18 @@ int main(int argc, char** argv) {
       for (size_t k = 0; k < logs.size(); ++k) {
         const std::string base = logs[k].substr(logs[k].find_last_of('/') + 1);
         std::printf("%s\n", row("  " + base.substr(0, 24), r.decided_per_log[k]).c_str());
+        if (!list_changes) continue;
+        const auto& d = r.decided_per_log[k];
+        const auto& f = r.flown_per_log[k];
+        const int64_t t0 = data[k].frames.front().obs.utime;
+        for (size_t c = 0; c < d.change_list.size(); ++c)
+          std::printf("    %7.2f s  %-7s -> %-7s  GESTURE_CMD %3d frames, flown %3d frames (-1: missed)\n",
+                      (d.change_list[c].utime - t0) * 1e-6, mode_name(d.change_list[c].from_mode),
+                      mode_name(d.change_list[c].to_mode), d.change_list[c].frames,
+                      c < f.change_list.size() ? f.change_list[c].frames : -1);
+        for (const auto& e : d.false_list)
+          std::printf("    %7.2f s  %-7s but %-7s GESTURE_CMD for %d frames (%s)\n", (e.utime - t0) * 1e-6,
+                      mode_name(e.from_mode), mode_name(e.to_mode), e.frames, e.from_mode ? "confused" : "false");
       }
     }
     return 0;

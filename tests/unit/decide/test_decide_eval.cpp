@@ -81,6 +81,37 @@ TEST(DecideScore, AnotherMotionThanTheOneAskedIsConfusedEvenWhileReacting) {
   EXPECT_EQ(sc.old_frames, 4);
 }
 
+TEST(DecideScore, TheNextGesturesCommandShownByTheTrueHandIsEarlyNotConfused) {
+  // OUT, the arm rising: the true hand is in the UP sector 3 frames before the label says UP; UP commanded
+  // on the last 2 of them is early. UP commanded while the true hand still points out is confused.
+  Sequence s;
+  s.add(30, G::GESTURE_OUT, M::MODE_FINE, kLeft, -0.5, 0);
+  s.add(1, G::GESTURE_OUT, M::MODE_UP, kLeft, 0, -0.6);
+  s.add(2, G::GESTURE_OUT, M::MODE_UP, {M::MODE_UP, {0, -0.6}}, 0, -0.6);
+  s.add(30, G::GESTURE_UP, M::MODE_UP, {M::MODE_UP, {0, -0.6}}, 0, -0.6);
+  EXPECT_EQ(score_commands(s.truth, s.cmds, ScoreRules{}).confused, 0);
+  Sequence t;
+  t.add(30, G::GESTURE_OUT, M::MODE_FINE, kLeft, -0.5, 0);
+  t.add(2, G::GESTURE_OUT, M::MODE_FINE, {M::MODE_UP, {0, -0.6}}, -0.5, 0);
+  t.add(30, G::GESTURE_UP, M::MODE_UP, {M::MODE_UP, {0, -0.6}}, 0, -0.6);
+  const Score sc = score_commands(t.truth, t.cmds, ScoreRules{});
+  EXPECT_EQ(sc.confused, 1);
+  EXPECT_EQ(sc.confused_frames, 2);
+}
+
+TEST(DecideScore, AnArmOnItsWayOutIsOneGestureWithWhereItArrives) {
+  // The arm sweeps through directions 60 degrees apart for 0.4 s (10 frames) before it settles: one change,
+  // at the label's switch, not a short gesture the command could never catch.
+  Sequence s;
+  s.add(20, G::GESTURE_REST, M::MODE_HOVER, kHoverCmd);
+  s.add(10, G::GESTURE_OUT, M::MODE_FINE, kHoverCmd, -0.25, 0.43);
+  s.add(40, G::GESTURE_OUT, M::MODE_FINE, kLeft, -0.5, 0);
+  const Score sc = score_commands(s.truth, s.cmds, ScoreRules{});
+  EXPECT_EQ(sc.changes, 1);
+  EXPECT_EQ(sc.missed, 0);
+  EXPECT_EQ(sc.reaction_frames.at(0), 10);
+}
+
 TEST(DecideScore, PointingTheOtherWayIsANewGestureThatNeedsTheNewDirection) {
   // Left arm out, then the right: FINE all along, but the left direction for 7 frames of the right's gesture
   Sequence s;

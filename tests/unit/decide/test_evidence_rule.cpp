@@ -1,6 +1,8 @@
 // EvidenceRule (decide.rule: evidence) on hand-made observation sequences with known reaction times.
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "config.hpp"
 #include "evidence_rule.hpp"
 #include "gesture_decider.hpp"
@@ -11,10 +13,18 @@ namespace {
 constexpr int kOut = 1, kFront = 2;
 constexpr double kBox = 200.0;  // px: moving_ratio 0.03 -> a hand moving more than 6 px a frame supports nothing
 
+// Numbers of their own (not the defaults), so that each test can count its frames.
 DecideParams evidence_params() {
   DecideParams p;
   p.rule = "evidence";
-  return p;  // enter 6, leave 2, max 10, decay 1, direction over 8 frames
+  p.evidence_enter = 6;
+  p.evidence_leave = 2;
+  p.evidence_max = 10;
+  p.evidence_decay = 1.0;
+  p.moving_ratio = 0.03;
+  p.moving_frames = 1;
+  p.direction_frames = 8;
+  return p;
 }
 
 TEST(EvidenceRule, ClassifiesOneObservationLikeAlg3SnapsAMean) {
@@ -71,6 +81,27 @@ TEST(EvidenceRule, AMovingHandIsEvidenceForNothing) {
   EXPECT_EQ(r.evidence(EvidenceRule::kDown), 0);
 }
 
+TEST(EvidenceRule, AnArmLoweredSlowlyDriftsAndIsNotHeld) {
+  // 2.5 px a frame down through the DOWN sector: still from one frame to the next (< 0.03 * 200 = 6 px), but
+  // 7.5 px from where it was 3 frames ago. With moving_frames 3 it never commands DOWN; with 1 it does.
+  DecideParams p = evidence_params();
+  p.moving_frames = 3;
+  EvidenceRule slow(p), jittery(evidence_params());
+  bool down_slow = false, down_one = false;
+  for (int i = 0; i < 40; ++i) {
+    const Vec2 v{-100, 60.0 + 2.5 * i};
+    down_slow = down_slow || slow.update(kOut, v, kBox).mode == GestureMode::Down;
+    down_one = down_one || jittery.update(kOut, v, kBox).mode == GestureMode::Down;
+  }
+  EXPECT_FALSE(down_slow);
+  EXPECT_TRUE(down_one);
+  // and a held pose with a pixel of jitter is held
+  EvidenceRule held(p);
+  GestureMode m = GestureMode::Hover;
+  for (int i = 0; i < 10; ++i) m = held.update(kOut, {-100.0 + (i % 2), 120}, kBox).mode;
+  EXPECT_EQ(m, GestureMode::Down);
+}
+
 TEST(EvidenceRule, PointingTheOtherWaySwitchesWithoutAveragingBothArms) {
   EvidenceRule r(evidence_params());
   for (int i = 0; i < 20; ++i) r.update(kOut, {-150, 5}, kBox);
@@ -106,6 +137,24 @@ TEST(EvidenceRule, ThresholdsComeFromParams) {
   r.update(kFront, {0, -30}, kBox);
   r.update(kFront, {0, -30}, kBox);
   EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Closer);
+}
+
+TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
+  const DecideParams p;
+  EXPECT_EQ(p.rule, "evidence");
+  // A steady pose is commanded on its 3rd frame (0.12 s at 25 fps), the paper's Alg. 3 on its 31st.
+  GestureDecider d(p);
+  HandObservation o;
+  o.kind = HandObservation::Kind::Front;
+  o.vector = {0, -30};
+  o.user_box_width = kBox;
+  o.track_id = 1;
+  std::vector<GestureMode> modes;
+  for (int i = 0; i < 3; ++i) {
+    o.utime = 1'000'000 + i * 40'000;
+    modes.push_back(d.update(o).mode);
+  }
+  EXPECT_EQ(modes, (std::vector<GestureMode>{GestureMode::Hover, GestureMode::Hover, GestureMode::Closer}));
 }
 
 TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {

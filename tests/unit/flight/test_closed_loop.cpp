@@ -32,7 +32,13 @@ struct Gesture {
 
 class ClosedLoop {
  public:
-  ClosedLoop() : decider_(DecideParams{}), bridge_(FlightParams{}), sim_(SimParams{}) {}
+  // The paper's Alg. 3: the distances below are set by its 1.24 s buffer.
+  ClosedLoop() : decider_(paper_rule()), bridge_(FlightParams{}), sim_(SimParams{}) {}
+  static DecideParams paper_rule() {
+    DecideParams p;
+    p.rule = "paper";
+    return p;
+  }
 
   // Runs `seconds` with the user holding `g`; returns the vehicle state at the end.
   VehicleState run(double seconds, const Gesture& g) {
