@@ -104,6 +104,14 @@ DsstEstimate Dsst::estimate() const {
   return e;
 }
 
+void Dsst::restore(const DsstEstimate& e) {
+  if (!initialized_) throw std::logic_error("Dsst::restore before init");
+  pos_ = cv::Point2d(e.box.x + e.box.width / 2, e.box.y + e.box.height / 2);
+  scale_ = std::clamp(e.scale, min_scale_, max_scale_);
+  psr_ = e.psr;
+  have_detection_ = false;  // the next learn() samples at the restored estimate, not at an older detection
+}
+
 void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
   initialized_ = false;
   check_frame(frame, "Dsst::init");

@@ -43,6 +43,9 @@ class Dsst {
 
   bool initialized() const { return initialized_; }
   DsstEstimate estimate() const;
+  // Puts the target back where an earlier estimate() had it (position and scale; the model is unchanged):
+  // the next track() searches around there. Throws std::logic_error before init.
+  void restore(const DsstEstimate& e);
   const DsstParams& params() const { return p_; }
 
  private:

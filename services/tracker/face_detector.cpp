@@ -32,7 +32,9 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
     cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
   else
     frame.copyTo(grey_);
-  const double k = std::max(1.0, p_.face.downscale);
+  // The budget: at least face.downscale, and shrunk to at most max_search_pixels.
+  const double k = std::max({1.0, p_.face.downscale,
+                             std::sqrt(static_cast<double>(grey_.total()) / std::max(1.0, p_.face.max_search_pixels))});
   const cv::Mat* img = &grey_;
   if (k > 1.0) {
     cv::resize(grey_, small_, cv::Size(), 1.0 / k, 1.0 / k, cv::INTER_AREA);

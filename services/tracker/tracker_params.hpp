@@ -14,6 +14,10 @@ struct FaceDetectorParams {
   int min_neighbors = 5;      //!< detectMultiScale: 5 gives no false positive on messi5.jpg, 3 does
   int min_face_px = 20;       //!< smallest face searched for, pixels (in the searched image)
   double downscale = 1.0;     //!< search a copy shrunk by this factor (1 = full size)
+  // The per-frame budget of a face search: the cascade's cost grows with the pixels searched (a 1280x720 frame
+  // took ~100 ms here, 10 fps while searching). A larger image is searched on a copy shrunk to this many
+  // pixels (a face must then be min_face_px in the shrunk copy).
+  double max_search_pixels = 640.0 * 480.0;
 
   template <class V>
   void visit(V& v) {
@@ -22,6 +26,7 @@ struct FaceDetectorParams {
     v("min_neighbors", min_neighbors, 0, 50, "detectMultiScale minNeighbors");
     v("min_face_px", min_face_px, 8, 1000, "smallest face searched, pixels");
     v("downscale", downscale, 1.0, 8.0, "search on a copy shrunk by this factor");
+    v("max_search_pixels", max_search_pixels, 1e4, 1e8, "a face search shrinks its image to at most this many pixels");
   }
 };
 
@@ -75,19 +80,36 @@ struct TrackerParams {
   BodyProportions body() const { return {body_width_in_faces, body_height_in_faces, body_top_in_faces}; }
   // Bolme et al. (MOSSE, CVPR 2010): PSR is 20..60 while tracking and drops below 7 on failure. Measured
   // here: min 12.6 over OTB Crossing, 36 over cf_tracking_sample; 4..6 after a cut to another scene.
-  double lost_psr = 7.0;               //!< PSR below this counts as a bad frame (and is not learnt)
+  double lost_psr = 7.0;               //!< PSR below this counts as a bad frame
   int lost_frames = 10;                //!< consecutive bad frames before LOST
+  // A frame is learnt when its PSR is at least learn_psr: an occluder or a cut (PSR 4..6) is not absorbed
+  // into the model. Not learning every frame below lost_psr lost small fast targets whose PSR dips to 6..7
+  // while they turn (UAV123 wakeboard7: the model fell behind and jumped off at frame 20; DSST alone held on).
+  double learn_psr = 6.0;
+  // After LOST the last good model is not thrown away: on every frame it is run again (not learnt) from where
+  // it last was; redetect_frames frames in a row with PSR >= redetect_psr re-find the target (a new track).
+  // Not after a loss by face misses: there the model itself is what is in doubt (it slid onto the background).
+  // After lost_search_frames frames LOST the last box is forgotten: SEARCHING (the face search only).
+  double redetect_psr = 10.0;          //!< 0: no re-detection by the filter
+  int redetect_frames = 2;
+  int lost_search_frames = 50;         //!< frames LOST (last box kept, filter re-detection) before SEARCHING
+  // While not tracking, the face search alternates, one search a frame: every search_full_stride-th frame the
+  // whole (shrunk) frame, else, while LOST, the last good box grown by search_local_scale at full resolution.
+  int search_full_stride = 2;          //!< 1: the whole frame every frame
+  double search_local_scale = 2.0;     //!< local window = last body box grown by this factor (each side)
   // Not in the paper, which searches the face only to start: DSST's scale drifts by tens of percent while the
   // drone backs off or closes in, and every hand rule is a ratio of the box. Every this many tracked frames
   // the face is looked for where the box says it is (a small window, ~1 ms), and the box re-anchored on it
   // when they disagree by more than face_recheck_tolerance (scale or shift, fraction of the box width).
   int face_recheck_frames = 25;        //!< 0: never (the paper)
   double face_recheck_tolerance = 0.05;
-  // A track started from the face whose face has not been found at this many re-checks in a row, where the
-  // box puts it well inside the image, is LOST: the box is no longer known to hold the user (it slid onto the
-  // background, or the user turned away). At the image's edge a miss does not count (flight keeps the face
-  // in view: flight.keep_face_in_view).
+  // A face the cascade cannot find is not by itself evidence of loss (a drone's view from above, a user far
+  // away or turned away): a re-check miss counts only on a frame whose PSR is also weak (below
+  // face_miss_psr). A track started from the face whose face has been missed so at this many re-checks in a
+  // row, where the box puts it well inside the image, is LOST (the box slid onto the background). At the
+  // image's edge a miss does not count (flight keeps the face in view: flight.keep_face_in_view).
   int face_recheck_misses = 3;         //!< 0: never LOST for this (manual tracks never are)
+  double face_miss_psr = 12.0;         //!< a re-check miss counts only when the frame's PSR is below this
 
   template <class V>
   void visit(V& v) {
@@ -98,9 +120,16 @@ struct TrackerParams {
     v("body_top_in_faces", body_top_in_faces, 0.0, 5.0, "body box top above the face top, in face heights");
     v("lost_psr", lost_psr, 0.0, 100.0, "peak-to-sidelobe ratio below which a frame is bad");
     v("lost_frames", lost_frames, 1, 1000, "consecutive bad frames before the track is LOST");
+    v("learn_psr", learn_psr, 0.0, 100.0, "a frame is learnt only when its PSR is at least this");
+    v("redetect_psr", redetect_psr, 0.0, 100.0, "LOST: the last good filter re-finds the target at this PSR (0: never)");
+    v("redetect_frames", redetect_frames, 1, 1000, "LOST: frames in a row at redetect_psr to re-find the target");
+    v("lost_search_frames", lost_search_frames, 1, 100000, "frames LOST (last box kept, re-detection) before SEARCHING");
+    v("search_full_stride", search_full_stride, 1, 1000, "not tracking: search the whole frame every this many frames");
+    v("search_local_scale", search_local_scale, 1.0, 10.0, "LOST: the face search window, the last box grown by this");
     v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
-    v("face_recheck_misses", face_recheck_misses, 0, 1000, "face not found at this many re-checks in a row: LOST (0: never)");
+    v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");
+    v("face_miss_psr", face_miss_psr, 0.0, 1000.0, "a re-check miss counts only when the frame's PSR is below this");
   }
 };
 

@@ -2,6 +2,7 @@
 #include "user_tracker.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace gpilot {
@@ -24,6 +25,7 @@ void UserTracker::reset() {
   out_.init = InitSource::kNone;
   out_.face.reset();
   bad_frames_ = 0;
+  searches_ = 0;
 }
 
 // DSST follows the part of the body box inside the frame (the window); the body box keeps its place and size
@@ -45,6 +47,7 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   out_.confidence = e.psr;
   out_.init = source;
   last_good_box_ = out_.box;
+  last_good_estimate_ = dsst_.estimate();
   if (new_track) ++out_.track_id;
   bad_frames_ = 0;
   frames_since_face_ = 0;
@@ -86,12 +89,92 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   return FaceCheck::Found;
 }
 
-void UserTracker::search(const cv::Mat& frame) {
+// One face search within the per-frame budget: every search_full_stride-th search the whole frame (shrunk to
+// face.max_search_pixels), the others, while LOST, the last good box grown by search_local_scale (SEARCHING:
+// nothing on those). True when a track started.
+bool UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
+  const bool full = searches_++ % p_.search_full_stride == 0;
+  std::optional<FaceDetection> face;
+  if (full) {
+    face = faces_.detect(frame);
+  } else if (out_.status == TrackStatus::kLost) {
+    const cv::Rect2d& b = last_good_box_;
+    const double g = p_.search_local_scale;
+    const cv::Point2d c = (b.tl() + b.br()) * 0.5;
+    face = faces_.detect(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
+  }
+  if (!face) return false;
   // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
-  if (const auto face = faces_.detect(frame)) {
-    start(frame, body_from_face(face->face, p_), InitSource::kFace);
-    found_face(frame, face->face);
+  start(frame, body_from_face(face->face, p_), InitSource::kFace);
+  found_face(frame, face->face);
+  return true;
+}
+
+void UserTracker::lose(bool model_trusted) {
+  // LOST reports the last box seen with good confidence.
+  out_.status = TrackStatus::kLost;
+  out_.box = last_good_box_;
+  face_misses_ = 0;
+  lost_for_ = 0;
+  redetect_hits_ = 0;
+  redetect_ok_ = model_trusted;
+  searches_ = 0;
+}
+
+void UserTracker::track_frame(const cv::Mat& frame) {
+  const DsstEstimate e = dsst_.track(frame);
+  out_.box = body_box(e.box);
+  out_.confidence = e.psr;
+  if (e.psr >= p_.learn_psr) dsst_.learn(frame);
+  if (e.psr < p_.lost_psr) {
+    if (++bad_frames_ >= p_.lost_frames) lose(true);  // the search starts with the next frame
+    return;
+  }
+  bad_frames_ = 0;
+  last_good_box_ = out_.box;
+  // Re-detection starts from the last estimate the filter was sure of (a frame above lost_psr can still be
+  // one of an occluder's, drifting).
+  if (e.psr >= p_.redetect_psr) last_good_estimate_ = dsst_.estimate();
+  if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) {
+    // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
+    // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
+    const FaceCheck check = recheck_face(frame);
+    if (check == FaceCheck::Found || (check == FaceCheck::Missed && e.psr >= p_.face_miss_psr)) face_misses_ = 0;
+    if (check == FaceCheck::Missed && e.psr < p_.face_miss_psr) ++face_misses_;
+    if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses)
+      lose(false);  // searched again from the next frame
+  }
+}
+
+void UserTracker::lost_frame(const cv::Mat& frame) {
+  ++lost_for_;
+  if (redetect_ok_ && p_.redetect_psr > 0) {
+    // The last good model, not learnt while lost, searching around the last good estimate on every frame (a
+    // search that followed its own peaks would wander off with the background and shrink the scale away).
+    dsst_.restore(last_good_estimate_);
+    const DsstEstimate e = dsst_.track(frame);
+    redetect_hits_ = e.psr >= p_.redetect_psr ? redetect_hits_ + 1 : 0;
+    if (redetect_hits_ >= p_.redetect_frames) {
+      out_.status = TrackStatus::kTracking;
+      out_.box = body_box(e.box);
+      out_.confidence = e.psr;
+      last_good_box_ = out_.box;
+      last_good_estimate_ = dsst_.estimate();
+      ++out_.track_id;  // a re-acquisition is a new track (decide's commands name the track)
+      bad_frames_ = 0;
+      frames_since_face_ = 0;
+      face_misses_ = 0;
+      dsst_.learn(frame);
+      return;
+    }
+  }
+  if (search(frame)) return;
+  if (lost_for_ >= p_.lost_search_frames) {
+    // The last box is too old to search near or to re-detect from: the face search alone, on the whole frame.
+    out_.status = TrackStatus::kSearching;
+    out_.box = cv::Rect2d();
+    searches_ = 0;
   }
 }
 
@@ -100,7 +183,7 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     throw std::invalid_argument("UserTracker: frame must be a non-empty CV_8UC1 or CV_8UC3 image");
   out_.face.reset();  // set again below only if the cascade finds the face in this frame
   if (frame.size() != frame_size_) {
-    if (out_.status == TrackStatus::kTracking) reset();
+    if (out_.status != TrackStatus::kSearching) reset();  // a LOST track's filter and box are of the old size too
     frame_size_ = frame.size();
   }
 
@@ -114,32 +197,10 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     }
   }
 
-  if (out_.status != TrackStatus::kTracking) {
-    search(frame);
-    return out_;
-  }
-
-  const DsstEstimate e = dsst_.track(frame);
-  out_.box = body_box(e.box);
-  out_.confidence = e.psr;
-  if (e.psr >= p_.lost_psr) {
-    bad_frames_ = 0;
-    last_good_box_ = out_.box;
-    dsst_.learn(frame);
-    if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) {
-      // A face the window cannot fully see (at the image's edge) is neither found nor missed.
-      const FaceCheck check = recheck_face(frame);
-      if (check == FaceCheck::Found) face_misses_ = 0;
-      if (check == FaceCheck::Missed) ++face_misses_;
-      if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses) {
-        out_.status = TrackStatus::kLost;  // searched again from the next frame
-        face_misses_ = 0;
-      }
-    }
-  } else if (++bad_frames_ >= p_.lost_frames) {
-    // LOST reports the last box seen with good confidence; the search starts with the next frame.
-    out_.status = TrackStatus::kLost;
-    out_.box = last_good_box_;
+  switch (out_.status) {
+    case TrackStatus::kTracking: track_frame(frame); break;
+    case TrackStatus::kLost: lost_frame(frame); break;
+    case TrackStatus::kSearching: search(frame); break;
   }
   return out_;
 }

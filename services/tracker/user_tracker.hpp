@@ -1,6 +1,9 @@
 // The tracker stage's core: searches the user's face, then follows the body box with DSST, watches the
-// peak-to-sidelobe ratio, declares LOST after lost_frames bad frames and searches again. A manual box
-// (TRACKER_INIT) starts a track on the next frame; a reset goes back to the face search.
+// peak-to-sidelobe ratio, declares LOST after lost_frames bad frames and searches again: while LOST the last
+// good filter looks for the target where it was (re-detection) and the face is searched near the last box and
+// in the whole frame (alternating, within a per-frame budget); after lost_search_frames the last box is
+// dropped and only the face search goes on (SEARCHING). A manual box (TRACKER_INIT) starts a track on the
+// next frame; a reset goes back to the face search.
 // No LCM, no clock: one frame in, one TrackOutput out; the same frames give the same outputs.
 #pragma once
 
@@ -51,7 +54,10 @@ class UserTracker {
  private:
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
   void found_face(const cv::Mat& frame, const cv::Rect2d& face);
-  void search(const cv::Mat& frame);
+  bool search(const cv::Mat& frame);
+  void track_frame(const cv::Mat& frame);
+  void lost_frame(const cv::Mat& frame);
+  void lose(bool model_trusted);
   enum class FaceCheck { Found, Missed, OutOfView };
   FaceCheck recheck_face(const cv::Mat& frame);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
@@ -62,11 +68,16 @@ class UserTracker {
   std::optional<cv::Rect2d> pending_box_;
   TrackOutput out_;
   cv::Rect2d last_good_box_;
+  DsstEstimate last_good_estimate_;  //!< the filter's last estimate with PSR >= redetect_psr (re-detection starts there)
   cv::Rect2d box_in_window_{0, 0, 1, 1};  //!< the body box in units of the DSST window (x, y from its corner)
   cv::Size frame_size_;
   int bad_frames_ = 0;
   int frames_since_face_ = 0;
   int face_misses_ = 0;
+  int lost_for_ = 0;           //!< frames LOST so far
+  int redetect_hits_ = 0;      //!< LOST frames in a row where the last good filter's PSR was >= redetect_psr
+  bool redetect_ok_ = false;   //!< the last good filter may re-find the target (not after a face-miss loss)
+  int64_t searches_ = 0;       //!< face searches since the last track, for the full/local alternation
 };
 
 }  // namespace gpilot

@@ -50,13 +50,15 @@ class Runner {
   virtual void init(const cv::Mat& frame, const cv::Rect2d& box) = 0;
   virtual std::optional<cv::Rect2d> update(const cv::Mat& frame) = 0;
   const std::string& name() const { return name_; }
+  //! True while the tracker is looking for its target rather than following it (the next update searches).
+  virtual bool searching() const { return false; }
 
   // Book-keeping of the evaluation.
   cv::Rect2d last;
   bool started = false;
   int lost = 0;
-  int64_t update_us = 0;
-  int updates = 0;
+  int64_t update_us = 0, search_us = 0;
+  int updates = 0, search_updates = 0;
   std::vector<double> ious, errors, psr;
   std::vector<FrameVerdict> verdicts;  //!< every frame after the start, for the absent-target report
   std::string state;                   //!< this frame's state as the tracker names it (for --trace)
@@ -72,6 +74,7 @@ class UserTrackerRunner : public Runner {
     t_.set_box(box);
     t_.process(frame);
   }
+  bool searching() const override { return t_.last().status != TrackStatus::kTracking; }
   std::optional<cv::Rect2d> update(const cv::Mat& frame) override {
     const TrackOutput o = t_.process(frame);
     psr.push_back(o.confidence);
@@ -167,6 +170,8 @@ struct Result {
   bool has_truth = false;
   int lost = 0;
   double fps = 0, ms = 0, psr_min = 0, psr_mean = 0;
+  int search_frames = 0;
+  double search_ms = 0;  //!< mean cost of a frame processed while not tracking
   cv::Rect2d final_box;
   AbsenceBehaviour absence;
 };
@@ -186,7 +191,8 @@ std::string result_fields(const Result& r) {
     << ", \"fps\": " << num(r.fps, 1) << ", \"ms_per_frame\": " << num(r.ms, 3) << ", \"final_box\": [" << num(r.final_box.x, 1)
     << ", " << num(r.final_box.y, 1) << ", " << num(r.final_box.width, 1) << ", " << num(r.final_box.height, 1) << "]"
     << ", \"absent_frames\": " << r.absence.absent_frames << ", \"absent_reported_lost\": " << r.absence.reported_lost
-    << ", \"refound_after\": [" << int_list(r.absence.refound_after) << "]";
+    << ", \"refound_after\": [" << int_list(r.absence.refound_after) << "]"
+    << ", \"frames_searching\": " << r.search_frames << ", \"ms_per_frame_searching\": " << num(r.search_ms, 3);
   return s.str();
 }
 
@@ -272,10 +278,16 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
       std::fprintf(trace, "%d,%.1f,%.1f,%.1f,%.1f,%d", frames, t.x, t.y, t.width, t.height, f.absent ? 1 : 0);
     }
     for (auto& r : runners) {
+      const bool searching = r->searching();
       const int64_t t0 = thread_cpu_utime();
       const auto box = r->update(f.image);
-      r->update_us += thread_cpu_utime() - t0;
+      const int64_t dt = thread_cpu_utime() - t0;
+      r->update_us += dt;
       ++r->updates;
+      if (searching) {
+        r->search_us += dt;
+        ++r->search_updates;
+      }
       if (box)
         r->last = *box;
       else
@@ -309,6 +321,8 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
     res.fps = res.ms > 0 ? 1000.0 / res.ms : 0.0;
     res.final_box = r->last;
     res.absence = absence_behaviour(r->verdicts);
+    res.search_frames = r->search_updates;
+    res.search_ms = r->search_updates ? r->search_us / 1000.0 / r->search_updates : 0.0;
     if (!r->psr.empty()) {
       res.psr_min = *std::min_element(r->psr.begin(), r->psr.end());
       for (double v : r->psr) res.psr_mean += v / static_cast<double>(r->psr.size());
@@ -343,8 +357,9 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
     std::printf("%-26s %8s %9s %9s %6d %9.1f %9.3f   final box %.0f,%.0f %.0fx%.0f\n", r.name.c_str(), num(r.has_truth ? r.scores.success_auc : NAN, 3).c_str(),
                 num(r.has_truth ? r.scores.precision_20px : NAN, 3).c_str(), num(r.has_truth ? r.scores.mean_iou : NAN, 3).c_str(),
                 r.lost, r.fps, r.ms, r.final_box.x, r.final_box.y, r.final_box.width, r.final_box.height);
-  std::printf("\nours: PSR min %.2f, mean %.2f; final box %.1f %.1f %.1f %.1f\n", ours.psr_min, ours.psr_mean,
-              ours.final_box.x, ours.final_box.y, ours.final_box.width, ours.final_box.height);
+  std::printf("\nours: PSR min %.2f, mean %.2f; final box %.1f %.1f %.1f %.1f; %d frames searching (LOST or SEARCHING) at"
+              " %.2f ms/frame\n", ours.psr_min, ours.psr_mean, ours.final_box.x, ours.final_box.y, ours.final_box.width,
+              ours.final_box.height, ours.search_frames, ours.search_ms);
   if (ours.absence.absent_frames > 0) {
     std::printf("\nwhile the target was not visible (%d frames), and after it came back (visible frames until IoU >= 0.5;"
                 " -1: never):\n", ours.absence.absent_frames);

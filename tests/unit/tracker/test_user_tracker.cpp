@@ -1,6 +1,7 @@
 // UserTracker on real frames: stays on the person of cf_tracking_sample, scores above a measured floor on
 // OTB Crossing (from ../shared, skipped without it), goes LOST within lost_frames when the scene is cut or
-// the person covered, re-acquires by face search, restarts on TRACKER_INIT, and replays identically.
+// the person covered, re-acquires by face search or by the last good filter, returns to SEARCHING after
+// lost_search_frames, restarts on TRACKER_INIT, and replays identically.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -111,28 +112,64 @@ TEST(UserTracker, CutToAnotherSceneIsLostThenTheFaceSearchFindsTheNewUser) {
   EXPECT_FALSE(t.process(cut).face.has_value());
 }
 
-TEST(UserTracker, CoveredPersonIsLostAndStaysLostWithoutAFace) {
+// From frame 20 on, a grey board covers the man (he is within x 230..350, y 30..200). Every frame's output.
+std::vector<TrackOutput> covered_run(const TrackerParams& p) {
   const auto frames = load(kSample);
-  TrackerParams p;
-  p.face.downscale = 2.0;  // the search after the loss finds nothing either way; halves its cost
   UserTracker t(p);
   t.set_box(kSampleInit);
-  int lost_at = -1;
+  std::vector<TrackOutput> outs;
   for (int i = 0; i < 53; ++i) {
     cv::Mat f = frames[static_cast<size_t>(i)].image.clone();
-    // From frame 20 on, a grey board covers the man (he is within x 230..350, y 30..200).
     if (i >= 19) f(cv::Rect(200, 0, 200, 230)).setTo(cv::Scalar(128, 128, 128));
-    const TrackOutput out = t.process(f);
-    if (i < 19) {
-      ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i + 1;
-    } else if (out.status == TrackStatus::kLost && lost_at < 0) {
-      lost_at = i - 18;
-    }
+    outs.push_back(t.process(f));
   }
-  EXPECT_EQ(lost_at, p.lost_frames);
-  // He is seen from behind: no face, so the tracker keeps searching.
-  EXPECT_EQ(t.last().status, TrackStatus::kLost);
-  EXPECT_EQ(t.last().track_id, 1);
+  return outs;
+}
+
+TEST(UserTracker, CoveredPersonIsLostThenSearchedForWithoutAFace) {
+  TrackerParams p;
+  p.lost_search_frames = 15;
+  const auto outs = covered_run(p);
+  for (int i = 0; i < 19; ++i) ASSERT_EQ(outs[static_cast<size_t>(i)].status, TrackStatus::kTracking) << "frame " << i + 1;
+  // LOST after exactly lost_frames bad frames, the last good box kept ...
+  const size_t lost = 19 + static_cast<size_t>(p.lost_frames) - 1;
+  EXPECT_EQ(outs[lost - 1].status, TrackStatus::kTracking);
+  EXPECT_EQ(outs[lost].status, TrackStatus::kLost);
+  for (size_t i = lost; i < lost + static_cast<size_t>(p.lost_search_frames); ++i) {
+    EXPECT_EQ(outs[i].status, TrackStatus::kLost) << "frame " << i + 1;
+    EXPECT_EQ(outs[i].box, outs[lost].box) << "frame " << i + 1;
+  }
+  // ... then, nothing re-found (he is seen from behind: no face), back to SEARCHING without a box.
+  for (size_t i = lost + static_cast<size_t>(p.lost_search_frames); i < outs.size(); ++i) {
+    EXPECT_EQ(outs[i].status, TrackStatus::kSearching) << "frame " << i + 1;
+    EXPECT_EQ(outs[i].box.area(), 0.0) << "frame " << i + 1;
+  }
+  EXPECT_EQ(outs.back().track_id, 1);
+}
+
+// The picture drops out (a black frame, as a video link's glitch) for lost_frames + 5 frames: LOST, then the
+// last good filter re-finds the man when the picture comes back (no face to search: he has his back turned).
+TEST(UserTracker, PictureDropoutIsLostThenRefoundByTheLastGoodFilter) {
+  const auto frames = load(kSample);
+  const TrackerParams p;
+  UserTracker t(p);
+  t.set_box(kSampleInit);
+  for (int i = 0; i < 15; ++i) ASSERT_EQ(t.process(frames[static_cast<size_t>(i)].image).status, TrackStatus::kTracking);
+  const cv::Mat black(frames[0].image.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int k = 1; k <= p.lost_frames + 5; ++k)
+    EXPECT_EQ(t.process(black).status, k < p.lost_frames ? TrackStatus::kTracking : TrackStatus::kLost) << "black frame " << k;
+  // Back on frame 16: re-found on the redetect_frames-th frame, a new track (the model's source kept).
+  TrackOutput out;
+  for (int k = 1; k <= p.redetect_frames; ++k) {
+    out = t.process(frames[static_cast<size_t>(14 + k)].image);
+    EXPECT_EQ(out.status, k < p.redetect_frames ? TrackStatus::kLost : TrackStatus::kTracking) << "frame " << 15 + k;
+  }
+  EXPECT_EQ(out.track_id, 2);
+  EXPECT_EQ(out.init, InitSource::kManual);
+  for (size_t i = 15 + static_cast<size_t>(p.redetect_frames); i < frames.size(); ++i)
+    ASSERT_EQ((out = t.process(frames[i].image)).status, TrackStatus::kTracking) << "frame " << i + 1;
+  const cv::Rect2d truth53(284, 100, 38, 64);  // as in StaysOnThePersonOfTheRealSequence
+  EXPECT_GT(iou(out.box, truth53), 0.6) << out.box;
 }
 
 TEST(UserTracker, SameFramesGiveIdenticalOutputs) {
