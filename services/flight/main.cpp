@@ -2,8 +2,8 @@
 // VEHICLE_STATE from the bus with backend none); writes FLIGHT_SETPOINT at flight.setpoint_rate_hz always
 // (zero with reasons when unsafe), VEHICLE_STATE from the built-in simulator (backend sim) or the autopilot
 // (backend mavlink, MAVLink v2 over UDP), and HEALTH.
-// Watched: READY=1 once running and WATCHDOG=1 from the setpoint loop itself (sd_notify; systemd's WatchdogSec or
-// gpilot-launch's watchdog_s), so a frozen loop is a silent watchdog, and the process is killed and restarted.
+// Watched: READY=1 once running and WATCHDOG=1 from the loop that publishes the setpoints (sd_notify; systemd's
+// WatchdogSec or gpilot-launch's watchdog_s), so a frozen loop is a silent watchdog: killed and restarted.
 // With MAVLink, ENGAGE first reads the autopilot's offboard-loss failsafe time (mavlink/offboard_loss.hpp).
 #include <cmath>
 #include <cstdio>
@@ -76,9 +76,12 @@ class FlightService {
       link_->send(session_->heartbeat());
     }
     node_.set_state(health_t::STATE_OK, "backend " + fp_.backend + ", not engaged");
-    // The watchdog: its period comes from the supervisor (WATCHDOG_USEC); pinged at a quarter of it.
+    // The watchdog: its period comes from the supervisor (WATCHDOG_USEC); pinged at a quarter of it by a timer of
+    // this loop (not a thread of its own, and not tied to setpoint_rate_hz, which may be slower than the deadline):
+    // a loop that stops, stops the pings.
     uint64_t watchdog_usec = 0;
-    if (sd_watchdog_enabled(0, &watchdog_usec) > 0) watchdog_period_us_ = static_cast<int64_t>(watchdog_usec / 4);
+    if (sd_watchdog_enabled(0, &watchdog_usec) > 0)
+      node_.every(static_cast<double>(watchdog_usec) * 1e-6 / 4, [] { sd_notify(0, "WATCHDOG=1"); });
     sd_notify(0, "READY=1");
   }
 
@@ -159,10 +162,6 @@ class FlightService {
   }
 
   void tick() {
-    if (watchdog_period_us_ > 0 && monotonic_utime() - last_watchdog_ >= watchdog_period_us_) {
-      sd_notify(0, "WATCHDOG=1");
-      last_watchdog_ = monotonic_utime();
-    }
     if (gate_) gate_act(gate_->on_time(monotonic_utime()));
     in_.now = wall_utime();
     last_ = bridge_.update(in_);
@@ -224,8 +223,6 @@ class FlightService {
   std::optional<mavlink::EngageGate> gate_;   // MAVLink only
   flight_control_t pending_engage_{};         // the ENGAGE waiting for the gate
   std::optional<OperatorRequest> refused_;    // the last ENGAGE refused (its repeats are not asked again)
-  int64_t watchdog_period_us_ = 0;            // 0: not watched
-  int64_t last_watchdog_ = 0;
 };
 
 }  // namespace
