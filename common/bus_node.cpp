@@ -45,7 +45,33 @@ int64_t recv_buf_size_of(const std::string& url) {
   return 0;
 }
 
-BusNode::BusNode(std::string name, const std::string& url) : name_(std::move(name)), url_(url) {
+bool url_leaves_host(const std::string& url) {
+  if (url.rfind("udpm://", 0) != 0 && url.rfind("udp://", 0) != 0) return false;  // memq://, file://
+  static const std::regex ttl("[?&]ttl=([0-9]+)");
+  std::smatch m;
+  return std::regex_search(url, m, ttl) && std::stoll(m[1].str()) > 0;  // LCM's default ttl is 0
+}
+
+BusNode::BusNode(std::string name, const std::string& url, const BusParams& params) : name_(std::move(name)), url_(url) {
+  std::string key_file = params.key_file;
+  if (const char* env = std::getenv("GPILOT_BUS_KEY"); env && *env) key_file = env;
+  const int64_t window = seconds_to_utime(params.time_window_s);
+  try {
+    if (!key_file.empty()) {
+      std::vector<BusKey> keys{load_bus_key(key_file)};
+      if (!params.previous_key_file.empty()) keys.push_back(load_bus_key(params.previous_key_file));
+      signer_ = std::make_unique<BusSigner>(keys.front(), random_sender_id());
+      verifier_ = std::make_unique<BusVerifier>(keys, window);
+    }
+  } catch (const std::runtime_error& e) {
+    throw BusError(name_ + ": " + e.what());
+  }
+  if (!signer_ && url_leaves_host(url_))
+    throw BusError(name_ + ": '" + url_ + "' reaches other hosts (ttl > 0) and no bus key is set: anyone on the "
+                   "network could fly the drone. Make a key with gpilot-keygen FILE, install the same file on the "
+                   "drone and the ground station, and set bus.key_file (or GPILOT_BUS_KEY=FILE)");
+  if (url_.rfind("udpm://", 0) == 0 || url_.rfind("udp://", 0) == 0) streams_ = std::make_unique<StreamGuard>(window);
+  else replay_streams_window_ = window;
   lcm_ = std::make_unique<lcm::LCM>(url_);
   if (!lcm_->good())
     throw BusError(name_ + ": cannot start LCM on '" + url_ +
@@ -65,17 +91,31 @@ BusNode::BusNode(std::string name, const std::string& url) : name_(std::move(nam
 BusNode::~BusNode() = default;
 
 void BusNode::send_encoded(const std::string& channel, size_t size) {
+  if (signer_) size = signer_->sign(channel, out_.data(), size, now());
   lcm_->publish(channel, out_.data(), static_cast<unsigned int>(size));
 }
 
-BusNode::Opened BusNode::open(const std::string&, const lcm::ReceiveBuffer& rbuf) {
+BusNode::Opened BusNode::open(const std::string& channel, const lcm::ReceiveBuffer& rbuf) {
+  if (last_opened_.data == rbuf.data && last_opened_.recv_utime == rbuf.recv_utime && last_opened_.channel == channel)
+    return last_opened_.opened;
   Opened o;
   o.data = rbuf.data;
-  o.size = rbuf.data_size;
+  if (verifier_) {
+    const BusVerifier::Result r = verifier_->verify(channel, rbuf.data, rbuf.data_size, arrival_time(rbuf));
+    o.why = r.why;
+    o.size = r.message_size;
+    o.sender = r.sender;
+  } else {
+    o.size = message_size_of(rbuf.data, rbuf.data_size);  // no key: a signature is stripped, not checked
+  }
+  last_opened_ = LastOpened{rbuf.data, rbuf.recv_utime, channel, o};
   return o;
 }
 
-std::string BusNode::check_stream(const std::string&, int64_t, int64_t, int64_t) { return ""; }
+std::string BusNode::check_stream(const std::string& stream, int64_t utime, int64_t seq, int64_t arrival_utime) {
+  if (!streams_) streams_ = std::make_unique<StreamGuard>(replay_streams_window_);  // replay: on the log's clock
+  return streams_->admit(stream, utime, seq, arrival_utime);
+}
 
 void BusNode::publish_raw(const std::string& channel, const void* data, size_t size) {
   lcm_->publish(channel, data, static_cast<unsigned int>(size));

@@ -18,8 +18,12 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bus_params.hpp"
+#include "bus_signature.hpp"
 #include "clock.hpp"
+#include "gpilot/flight_control_t.hpp"
 #include "message_checks.hpp"
+#include "stream_guard.hpp"
 #include "stage_stats.hpp"
 #include "wire_lengths.hpp"
 
@@ -48,6 +52,17 @@ std::string decode_exactly(const void* data, size_t size, Msg& msg) {
   return "";
 }
 
+// Which publisher's stream a message belongs to, where one channel has several (beside the signer's id).
+template <class Msg>
+std::string stream_of(const Msg&) {
+  return "";
+}
+inline std::string stream_of(const health_t& m) { return m.name + "/" + std::to_string(m.pid); }
+inline std::string stream_of(const flight_control_t& m) { return m.source; }
+
+// True for an LCM URL that can reach other hosts (udpm with ttl > 0): such a bus needs a key.
+bool url_leaves_host(const std::string& url);
+
 class BusError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -64,9 +79,12 @@ int64_t recv_buf_size_of(const std::string& url);
 
 class BusNode {
  public:
-  // Throws BusError when LCM cannot start (no multicast route, bad URL). Warns once on stderr when the
-  // kernel's net.core.rmem_max is below the URL's recv_buf_size.
-  BusNode(std::string name, const std::string& url);
+  // Throws BusError when LCM cannot start (no multicast route, bad URL), when a key cannot be read, or on
+  // a bus that leaves the host without a key. Warns once on stderr when the kernel's net.core.rmem_max is
+  // below the URL's recv_buf_size. $GPILOT_BUS_KEY, when set, is the key file (over bus.key_file).
+  // With a key, every message sent is signed and every message received must be (bus_signature.hpp).
+  // Per-stream order and freshness (stream_guard.hpp) are checked on a network bus and in replay.
+  BusNode(std::string name, const std::string& url, const BusParams& params = BusParams{});
   ~BusNode();
   BusNode(const BusNode&) = delete;
   BusNode& operator=(const BusNode&) = delete;
@@ -119,6 +137,7 @@ class BusNode {
 
   const std::string& name() const { return name_; }
   const std::string& url() const { return url_; }
+  bool signs() const { return signer_ != nullptr; }
   StageStats& stats() { return stats_; }
   void publish_health();
 
@@ -161,15 +180,26 @@ class BusNode {
     const void* data = nullptr;
     size_t size = 0;
     std::string why;
+    uint64_t sender = 0;  // the signer's id (0: unsigned)
   };
   Opened open(const std::string& channel, const lcm::ReceiveBuffer& rbuf);
   // The per-stream rules (seq moves forward, utime near the arrival time): "" or why not.
   std::string check_stream(const std::string& channel, int64_t utime, int64_t seq, int64_t arrival_utime);
   int64_t arrival_time(const lcm::ReceiveBuffer& rbuf) const { return log_time_ >= 0 ? log_time_ : rbuf.recv_utime; }
 
-  static constexpr size_t kMaxTrailerBytes = 128;
+  static constexpr size_t kMaxTrailerBytes = kSignatureBytes;
   std::vector<uint8_t> out_;
   int64_t log_time_ = -1;
+  std::unique_ptr<BusSigner> signer_;
+  std::unique_ptr<BusVerifier> verifier_;
+  std::unique_ptr<StreamGuard> streams_;  // null on in-process buses (memq://, file://) outside replay
+  int64_t replay_streams_window_ = 0;
+  struct LastOpened {                     // one datagram dispatched to several subscriptions: one verdict
+    const void* data = nullptr;
+    int64_t recv_utime = 0;
+    std::string channel;
+    Opened opened;
+  } last_opened_;
 
   std::string name_;
   std::string url_;
@@ -201,7 +231,9 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   if (why.empty()) why = decode_exactly(opened.data, opened.size, msg);
   if (why.empty()) why = check_message(msg);
   const int64_t arrival = node.arrival_time(*rbuf);
-  if (why.empty()) why = node.check_stream(channel, msg.utime, msg.seq, arrival);
+  if (why.empty() && (node.streams_ || node.log_time_ >= 0))
+    why = node.check_stream(channel + "/" + std::to_string(opened.sender) + "/" + stream_of(msg), msg.utime, msg.seq,
+                            arrival);
   if (!why.empty()) {
     node.stats_.rejected(channel + ": " + why);
     return;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "bus_params.hpp"
 #include "capture/capture_params.hpp"
 #include "decide/decide_params.hpp"
 #include "flight/flight_params.hpp"
@@ -16,6 +17,7 @@ namespace {
 // Visits each section with its Params type; the one list of sections.
 template <class F>
 void for_each_section(F&& f) {
+  f("bus", BusParams{});
   f("capture", CaptureParams{});
   f("tracker", TrackerParams{});
   f("hands", HandsParams{});

@@ -43,7 +43,7 @@ int ServiceCli::run(int argc, char** argv, const std::function<int(const Config&
 
 int ServiceCli::run_node(int argc, char** argv, const std::function<int(const Config&, BusNode&)>& body) {
   return run(argc, argv, [&](const Config& config) {
-    BusNode node(name_, resolve_lcm_url(lcm_url_));
+    BusNode node(name_, resolve_lcm_url(lcm_url_), config.section<BusParams>("bus"));
     return body(config, node);
   });
 }

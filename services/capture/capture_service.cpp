@@ -98,7 +98,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
             return ReadStatus::End;
           }
           SyntheticFrame f = world->render(t, seq, vehicle);
-          out.utime = wall_utime();
+          out.utime = node.now();
           out.bgr = std::move(f.bgr);
           out.truth = f.truth;
           return ReadStatus::Frame;
@@ -115,7 +115,9 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
         opened = file->describe();
         produce = [&](int64_t, Produced& out, std::string& why) {
           const ReadStatus s = file->read(out.bgr, why);
-          out.utime = seconds_to_utime(file->media_time_s());
+          // Stamped when read, on the bus clock like a camera's: the file's own time (media_time_s) is not a
+          // time on the bus, and downstream stages judge freshness and latency by utime.
+          out.utime = node.now();
           return s;
         };
         break;
@@ -128,7 +130,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
         fps = camera->fps();
         produce = [&](int64_t, Produced& out, std::string& why) {
           const ReadStatus s = camera->read(out.bgr, why);
-          out.utime = wall_utime();
+          out.utime = node.now();
           return s;
         };
         break;

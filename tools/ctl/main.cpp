@@ -37,12 +37,13 @@ int main(int argc, char** argv) {
       return 2;
     }
     flight_control_t m{};
-    m.utime = wall_utime();
+    m.utime = node.now();
     m.seq = 0;
     m.command = it->second;
     m.takeoff_altitude = it->second == flight_control_t::COMMAND_TAKEOFF ? altitude : 0.0f;
     m.source = "gpilot-ctl";
-    // The same request repeated is harmless: each one sets the same state.
+    // The same request repeated is harmless: each one sets the same state. The copies are byte-identical
+    // messages (same utime and seq): a receiver acts on the first and its bus drops the rest as duplicates.
     Pacer pace(20.0);
     for (int i = 0; i < std::max(1, repeat); ++i) {
       if (i) pace.wait();

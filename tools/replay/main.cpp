@@ -114,11 +114,16 @@ int main(int argc, char** argv) {
       if (s == "flight") flight = std::make_unique<FlightReplay>(config, node, now_ts);
       else running.push_back(stages().at(s).start(config, node));
     }
+    // Messages are compared without their bus signatures: a live run's outputs were signed with its key, at
+    // its times; a replay signs nothing (memq:// has no key) and strips the recorded inputs' signatures.
     std::map<std::string, std::vector<std::vector<uint8_t>>> produced, recorded;
+    const auto message_of = [](const void* data, size_t size) {
+      const auto* p = static_cast<const uint8_t*>(data);
+      return std::vector<uint8_t>(p, p + message_size_of(data, size));
+    };
     for (const auto& o : outputs)
       node.subscribe_raw(o, [&](const std::string& ch, const void* data, size_t size, int64_t) {
-        const auto* p = static_cast<const uint8_t*>(data);
-        produced[ch].emplace_back(p, p + size);
+        produced[ch].push_back(message_of(data, size));
         write(now_ts, ch, data, size);
       });
 
@@ -131,8 +136,9 @@ int main(int argc, char** argv) {
       ++n_events;
       now_ts = ev->timestamp;
       const auto* p = static_cast<const uint8_t*>(ev->data);
+      node.set_log_time(now_ts);  // the stages' clock is the log's (BusNode::now)
       if (outputs.count(ev->channel)) {
-        recorded[ev->channel].emplace_back(p, p + ev->datalen);
+        recorded[ev->channel].push_back(message_of(p, static_cast<size_t>(ev->datalen)));
         if (flight && ev->channel == "FLIGHT_SETPOINT") {
           flight->on_recorded_setpoint(ev->data, static_cast<size_t>(ev->datalen));
           node.drain();

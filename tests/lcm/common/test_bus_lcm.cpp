@@ -39,12 +39,13 @@ TEST(BusLcm, FullHdFrameArrivesByteIdentical) {
 
   cv::Mat frame(720, 1280, CV_8UC3);
   cv::randu(frame, 0, 256);
-  const image_t sent = mat_to_image(frame, 1700000000000001, 77);
+  const int64_t now = wall_utime();
+  const image_t sent = mat_to_image(frame, now, 77);
   ASSERT_EQ(sent.size, 1280 * 720 * 3);
   tx.publish("CAMERA", sent);
   ASSERT_TRUE(spin_until(rx, [&] { return got.has_value(); })) << "no frame within 3 s";
   EXPECT_EQ(got->seq, 77);
-  EXPECT_EQ(got->utime, 1700000000000001);
+  EXPECT_EQ(got->utime, now);
   EXPECT_EQ(got->data, sent.data);
   cv::Mat back;
   ASSERT_EQ(image_to_mat(*got, back), "");
@@ -64,7 +65,7 @@ TEST(BusLcm, BadMessagesAreCountedAndReportedInHealth) {
   });
 
   // GIVEN a valid frame, then the same frame truncated to half its bytes
-  const image_t good = mat_to_image(cv::Mat(48, 64, CV_8UC3, cv::Scalar(10, 20, 30)), 1, 1);
+  const image_t good = mat_to_image(cv::Mat(48, 64, CV_8UC3, cv::Scalar(10, 20, 30)), wall_utime(), 1);
   std::vector<uint8_t> bytes(good.getEncodedSize());
   good.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   tx.publish("CAMERA", good);
@@ -75,9 +76,11 @@ TEST(BusLcm, BadMessagesAreCountedAndReportedInHealth) {
   tx.publish("CAMERA", wrong);
   // AND a command with a NaN, then a valid one
   gesture_cmd_t cmd{};
+  cmd.utime = wall_utime();
   cmd.direction[0] = std::numeric_limits<float>::quiet_NaN();
   tx.publish("GESTURE_CMD", cmd);
   cmd.direction[0] = 0.5f;
+  cmd.seq = 1;
   tx.publish("GESTURE_CMD", cmd);
 
   // WHEN the receiver handles them
@@ -94,7 +97,10 @@ TEST(BusLcm, BadMessagesAreCountedAndReportedInHealth) {
   EXPECT_EQ(health->rejected, 3);
   EXPECT_EQ(health->messages_in, 2);
   EXPECT_EQ(health->last_reject_reason, "GESTURE_CMD: direction is not finite");
-  tx.publish("CAMERA", good);
+  image_t next = good;
+  next.utime = wall_utime();
+  next.seq = 2;
+  tx.publish("CAMERA", next);
   ASSERT_TRUE(spin_until(rx, [&] { return images == 2; }));
 }
 

@@ -29,9 +29,15 @@ cv::Mat person_pointing() {
   return frame;
 }
 
+// The messages' times: now (the bus rejects a utime far from its arrival).
+int64_t t0() {
+  static const int64_t start = wall_utime();
+  return start;
+}
+
 user_track_t track(int64_t seq, int8_t status = user_track_t::STATUS_TRACKING) {
   user_track_t t{};
-  t.utime = 1000 + seq;
+  t.utime = t0() + seq;
   t.seq = seq;
   t.status = status;
   t.box[0] = 100;
@@ -73,7 +79,7 @@ TEST(HandsService, PairsBySeqAndCountsTheUnmatched) {
   auto send_frame = [&](int64_t seq) {
     image_t f = frame;
     f.seq = seq;
-    f.utime = 1000 + seq;
+    f.utime = t0() + seq;
     bus.publish("CAMERA", f);
     bus.spin_once(15);
   };
@@ -111,7 +117,7 @@ TEST(HandsService, PairsBySeqAndCountsTheUnmatched) {
   for (const auto& [seq, m] : obs) got.insert(seq);
   EXPECT_EQ(got, expected);
   for (const auto& [seq, m] : obs) {
-    EXPECT_EQ(m.utime, 1000 + seq);
+    EXPECT_EQ(m.utime, t0() + seq);
     if (seq == 4) {
       EXPECT_EQ(m.kind, hand_obs_t::KIND_NONE) << "a SEARCHING track gives NONE";
       EXPECT_EQ(m.track_status, user_track_t::STATUS_SEARCHING);

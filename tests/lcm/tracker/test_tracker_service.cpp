@@ -54,7 +54,8 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
 
   // GIVEN a manual box, then frames 0..15 with two malformed CAMERA messages after frame 7
   tracker_init_t req{};
-  req.utime = 1;
+  const int64_t t0 = wall_utime();  // the bus rejects a utime far from its arrival
+  req.utime = t0;
   req.seq = 1;
   req.command = tracker_init_t::COMMAND_SET_BOX;
   req.box[0] = static_cast<float>(init.x);
@@ -65,12 +66,12 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   bus.publish("TRACKER_INIT", req);
   bus.spin_once(100);
   auto send = [&](int64_t seq) {
-    bus.publish("CAMERA", mat_to_image(frames[static_cast<size_t>(seq)], 5000 + 33000 * seq, seq));
+    bus.publish("CAMERA", mat_to_image(frames[static_cast<size_t>(seq)], t0 + 5000 + 33000 * seq, seq));
     // One frame at a time: the answer comes before the next frame, so that no frame is dropped.
     spin_until([&] { return tracks.count(seq) > 0; }, 3000);
   };
   for (int64_t s = 0; s < 8; ++s) send(s);
-  image_t bad = mat_to_image(frames[8], 999, 100, image_t::PIXEL_FORMAT_JPEG);
+  image_t bad = mat_to_image(frames[8], t0 + 999, 100, image_t::PIXEL_FORMAT_JPEG);
   for (size_t i = 0; i < bad.data.size(); i += 7) bad.data[i] = 0;  // not a JPEG any more
   bus.publish("CAMERA", bad);
   const uint8_t garbage[] = {1, 2, 3, 4, 5};
@@ -88,7 +89,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   for (int64_t s = 0; s < 16; ++s) {
     const TrackOutput want = core.process(frames[static_cast<size_t>(s)]);
     const user_track_t& got = tracks[s];
-    EXPECT_EQ(got.utime, 5000 + 33000 * s);
+    EXPECT_EQ(got.utime, t0 + 5000 + 33000 * s);
     EXPECT_EQ(got.status, user_track_t::STATUS_TRACKING) << "seq " << s;
     EXPECT_EQ(got.init_source, user_track_t::INIT_MANUAL);
     EXPECT_EQ(got.track_id, 1);
@@ -109,7 +110,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
 
   // GIVEN a reset, WHEN a frame with a frontal face comes (the astronaut photograph in a 640x360 frame)
   tracker_init_t reset{};
-  reset.utime = 2;
+  reset.utime = wall_utime();
   reset.seq = 2;
   reset.command = tracker_init_t::COMMAND_RESET;
   reset.source = "test_lcm_tracker";
@@ -119,7 +120,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   ASSERT_FALSE(a.empty());
   cv::Mat face_frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
   cv::resize(a, face_frame(cv::Rect(140, 0, 360, 360)), cv::Size(360, 360), 0, 0, cv::INTER_AREA);
-  bus.publish("CAMERA", mat_to_image(face_frame, 5000 + 33000 * 16, 16));
+  bus.publish("CAMERA", mat_to_image(face_frame, t0 + 5000 + 33000 * 16, 16));
   ASSERT_TRUE(spin_until([&] { return tracks.count(16) > 0; }, 10000)) << "no USER_TRACK for the face frame";
   // THEN the face search starts a track, and USER_TRACK carries the face the core finds in that frame.
   core.reset();

@@ -52,6 +52,7 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
 
   // WHEN 20 frames with their per-frame messages are published
   test::SyntheticRun run;
+  run.t0 = wall_utime();  // the bus rejects messages whose utime is far from their arrival
   run.size = cv::Size(160, 120);
   run.decided_mode = [](int64_t) { return gesture_cmd_t::MODE_FINE; };
   const int kFrames = 20;
