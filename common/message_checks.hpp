@@ -21,10 +21,11 @@ namespace gpilot {
 // rejected before any stage sizes a buffer or divides by them.
 constexpr int kMaxImageSide = 16384;     //!< pixels, a side of any image (and of the image sizes messages name)
 constexpr double kMinBoxSide = 1.0;      //!< pixels: a user box narrower or shorter than a pixel is no user
-//! A user box spans at most this many image widths/heights (close up the body box, 7 face heights, passes the
-//! frame's edges: about 2 image heights for a face a quarter of the image tall), and its corner lies at most
-//! this many image sizes off the image.
-constexpr double kMaxBoxInImages = 4.0;
+//! A user box spans at most this many image widths/heights, and its corner lies at most this many image sizes
+//! off the image. Close up the body box passes the frame's edges: it is tracker.body_height_in_faces (7, at
+//! most 20) face heights, and a face may fill the frame (the fuzzer made the tracker publish 4.6 image
+//! heights on a 41 px frame), so the bound is the largest body box of the largest face, with margin.
+constexpr double kMaxBoxInImages = 32.0;
 
 std::string check_message(const image_t& m);
 std::string check_message(const tracker_init_t& m);

@@ -33,8 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   obs_core.reset();
   gpilot::ImageLimits limits;
   limits.max_width = limits.max_height = 256;
-  for (int step = 0; step < 6 && !in.empty(); ++step) {
-    const cv::Mat bgr = gpilot::fuzz::frame(in, 4, 96);
+  for (int step = 0; step < 5 && !in.empty(); ++step) {
+    const cv::Mat bgr = gpilot::fuzz::frame(in, 4, 64);
     const bool jpeg = in.byte() < 32;
     const gpilot::image_t frame = gpilot::mat_to_image(
         bgr, step, step, jpeg ? gpilot::image_t::PIXEL_FORMAT_JPEG : gpilot::image_t::PIXEL_FORMAT_BGR8, 80);

@@ -59,7 +59,7 @@ const gpilot::UserTracker& prototype() {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   gpilot::fuzz::Input in(data, size);
   gpilot::UserTracker tracker = prototype();
-  for (int step = 0; step < 8 && !in.empty(); ++step) {
+  for (int step = 0; step < 6 && !in.empty(); ++step) {
     const uint8_t op = in.byte() % 4;
     if (op == 0) {
       gpilot::tracker_init_t m{};

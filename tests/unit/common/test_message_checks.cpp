@@ -134,11 +134,16 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   // A body box passing the frame's edges close up (2.5 image heights, corner above the image): fine
   t.box[1] = -300, t.box[3] = 1200;
   EXPECT_EQ(check_message(t), "");
+  // and the 7 face heights of a face filling a 41 px frame (the fuzzer's tracker published 189 px): fine
+  t.image_height = 41;
+  t.box[1] = -10, t.box[3] = 189;
+  EXPECT_EQ(check_message(t), "");
+  t.image_height = 480;
   // The box of 1e6 px sent ahead of a frame (hands stalled 5.4 s, +545 MB)
   t.box[2] = 1e6f, t.box[3] = 1e6f;
-  EXPECT_EQ(check_message(t), "box width 1e+06 is beyond 640 px image (4 x)");
+  EXPECT_EQ(check_message(t), "box width 1e+06 is beyond 640 px image (32 x)");
   t.box[2] = 200;
-  EXPECT_EQ(check_message(t), "box height 1e+06 is beyond 480 px image (4 x)");
+  EXPECT_EQ(check_message(t), "box height 1e+06 is beyond 480 px image (32 x)");
   // A box width of 1e-45 (a yaw of -0.16 rad/s was flown on it)
   std::copy(body, body + 4, t.box);
   t.box[2] = 1e-45f;
@@ -185,7 +190,7 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   h.image_width = 0;  // hands publishes the track's box with its frame's size: the fuzzer found one without
   EXPECT_EQ(check_message(h), "user_box without an image size");
 
-  // A manual box: at least a pixel, at most 4 of the largest image
+  // A manual box: at least a pixel, at most 32 of the largest image
   tracker_init_t i{};
   i.command = tracker_init_t::COMMAND_SET_BOX;
   std::copy(body, body + 4, i.box);
@@ -193,7 +198,7 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   i.box[3] = 1e-45f;
   EXPECT_EQ(check_message(i), "box height 1.4013e-45 is below a pixel");
   i.box[3] = 1e6f;
-  EXPECT_EQ(check_message(i), "box height 1e+06 is beyond any image (4 x)");
+  EXPECT_EQ(check_message(i), "box height 1e+06 is beyond any image (32 x)");
 }
 
 }  // namespace
