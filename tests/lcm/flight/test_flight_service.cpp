@@ -4,6 +4,8 @@
 // LOCAL_POSITION_NED back to VEHICLE_STATE, bad bytes counted).
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -281,11 +283,35 @@ TEST(FlightService, MavlinkBackendTalksToAnAutopilotOnLoopback) {
     if (f.msgid == mavlink::CommandLong::kId && mavlink::unpack_command_long(f.payload).command == 400) ++arms;
   EXPECT_EQ(arms, 1);
 
-  // engaged: SET_POSITION_TARGET_LOCAL_NED streams at >= 20 Hz (zero: no gesture yet), and OFFBOARD is asked for
+  // ENGAGE reads the autopilot's COM_OF_LOSS_T first: answered 3 s (the vehicle would fly on that long after
+  // gpilot-flight stops), it is refused: no setpoints
+  float loss_t = 3.0f;
+  int answered = 0;
+  auto answer_all = [&] {
+    answer();
+    int asked = 0;
+    for (const auto& f : ap.frames) asked += f.msgid == mavlink::ParamRequestRead::kId ? 1 : 0;
+    for (; answered < asked; ++answered) {
+      mavlink::ParamValue v;
+      std::strncpy(v.param_id, "COM_OF_LOSS_T", sizeof v.param_id);
+      v.param_value = loss_t;
+      v.param_type = mavlink::kMavParamTypeReal32;
+      ap.send(from_autopilot(v, seq++));
+    }
+  };
   ASSERT_TRUE(ctl("engage"));
-  run(0.3, answer);
+  run(0.5, answer_all);
+  EXPECT_GE(answered, 1);
+  EXPECT_EQ(ap.count(mavlink::SetPositionTargetLocalNed::kId), 0);
+
+  // answered 0.5 s: engaged, SET_POSITION_TARGET_LOCAL_NED streams at >= 20 Hz (zero: no gesture yet), and
+  // OFFBOARD is asked for
+  loss_t = 0.5f;
+  ASSERT_TRUE(ctl("engage"));
+  run(0.3, answer_all);
   const int at_engage = ap.count(mavlink::SetPositionTargetLocalNed::kId);
-  run(1.0, answer);
+  EXPECT_GT(at_engage, 0);
+  run(1.0, answer_all);
   const int in_one_second = ap.count(mavlink::SetPositionTargetLocalNed::kId) - at_engage;
   EXPECT_GE(in_one_second, 20);
   bool offboard = false;
