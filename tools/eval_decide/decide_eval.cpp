@@ -9,6 +9,7 @@
 #include "channels.hpp"
 #include "decide/decide_service.hpp"
 #include "flight/flight_bridge.hpp"
+#include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/hand_obs_t.hpp"
@@ -43,8 +44,18 @@ EvalLog read_eval_log(const std::string& path) {
   LogDispatcher d;
   std::vector<hand_obs_t> obs;
   std::unordered_map<int64_t, ground_truth_t> truth;
+  std::unordered_map<int64_t, int64_t> truth_logged;  // seq -> log time
+  std::unordered_map<int64_t, ScoredCommand> cmd_of_seq;
+  std::vector<std::pair<int64_t, flight_setpoint_t>> setpoints;  // log time, message
   d.on<hand_obs_t>(channel::kHandObs, [&](const hand_obs_t& m, int64_t) { obs.push_back(m); });
-  d.on<ground_truth_t>(channel::kGroundTruth, [&](const ground_truth_t& m, int64_t) { truth[m.seq] = m; });
+  d.on<ground_truth_t>(channel::kGroundTruth, [&](const ground_truth_t& m, int64_t t) {
+    truth[m.seq] = m;
+    truth_logged[m.seq] = t;
+  });
+  d.on<gesture_cmd_t>(channel::kGestureCmd, [&](const gesture_cmd_t& m, int64_t) {
+    cmd_of_seq[m.seq] = {m.mode, {m.direction[0], m.direction[1]}};
+  });
+  d.on<flight_setpoint_t>(channel::kFlightSetpoint, [&](const flight_setpoint_t& m, int64_t t) { setpoints.push_back({t, m}); });
   LogEvent ev;
   while (log.next(ev)) d.dispatch(ev);
   if (obs.empty() || truth.empty())
@@ -69,6 +80,29 @@ EvalLog read_eval_log(const std::string& path) {
     f.expected_dir[0] = t->second.expected_direction[0];
     f.expected_dir[1] = t->second.expected_direction[1];
     out.frames.push_back(f);
+  }
+  if (!cmd_of_seq.empty()) {
+    for (const auto& f : out.frames) {
+      const auto c = cmd_of_seq.find(f.obs.seq);
+      out.recorded_cmd.push_back(c == cmd_of_seq.end() ? ScoredCommand{} : c->second);
+    }
+  }
+  if (!setpoints.empty()) {
+    std::sort(setpoints.begin(), setpoints.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    size_t next = 0;
+    ScoredCommand flying;
+    for (size_t i = 0; i < out.frames.size(); ++i) {
+      // Until the next frame's truth was logged (the last frame: one frame period on).
+      const int64_t t = truth_logged[out.frames[i].obs.seq];
+      const int64_t until = i + 1 < out.frames.size() ? truth_logged[out.frames[i + 1].obs.seq] : t + 40000;
+      for (; next < setpoints.size() && setpoints[next].first < until; ++next) {
+        const flight_setpoint_t& m = setpoints[next].second;
+        const auto c = cmd_of_seq.find(m.seq);
+        flying = {m.mode, {0, 0}};
+        if (c != cmd_of_seq.end() && c->second.mode == m.mode) flying = c->second;
+      }
+      out.recorded_flown.push_back(flying);
+    }
   }
   return out;
 }

@@ -24,21 +24,25 @@ struct EvalFrame {
   double expected_dir[2] = {0.0, 0.0};  //!< the truth's camera-frame x, y (box widths)
 };
 
-struct EvalLog {
-  std::string path;
-  std::vector<EvalFrame> frames;  //!< HAND_OBS in log order, each with its GROUND_TRUTH
-  int64_t hand_obs_without_truth = 0;
-};
-
-// Reads HAND_OBS and GROUND_TRUTH (joined by seq); throws LogError for an unreadable log, std::runtime_error
-// for one without both channels.
-EvalLog read_eval_log(const std::string& path);
-
 // A command as the scoring sees it: a mode and, for FINE/UP/DOWN, the camera-frame x, y.
 struct ScoredCommand {
   int mode = 0;
   double dir[2] = {0.0, 0.0};
 };
+
+struct EvalLog {
+  std::string path;
+  std::vector<EvalFrame> frames;  //!< HAND_OBS in log order, each with its GROUND_TRUTH
+  int64_t hand_obs_without_truth = 0;
+  // What a live run (./deploy/run, the e2e test) recorded, one per frame, when the log has it: the GESTURE_CMD of
+  // the frame's seq, and what FLIGHT_SETPOINT flew when the next frame's GROUND_TRUTH was logged (its mode;
+  // FINE's direction from the GESTURE_CMD it follows).
+  std::vector<ScoredCommand> recorded_cmd, recorded_flown;
+};
+
+// Reads HAND_OBS and GROUND_TRUTH (joined by seq); throws LogError for an unreadable log, std::runtime_error
+// for one without both channels.
+EvalLog read_eval_log(const std::string& path);
 
 // How the truth is cut into gestures and what counts as the right command.
 struct ScoreRules {

@@ -75,6 +75,7 @@ struct Result {
   Variant variant;
   Score decided, flown;                    // pooled over the logs
   std::vector<Score> decided_per_log, flown_per_log;
+  bool live = false;                       // a live run's recorded commands, not a configuration re-run
 };
 
 std::string num(double v, const char* fmt = "%.3f") {
@@ -147,7 +148,9 @@ void plot(const std::string& file, const std::vector<Result>& results) {
     if (!std::isfinite(r.decided.reaction_median_s())) continue;
     const cv::Point a = px(r.decided.reaction_median_s(), r.decided.false_per_minute());
     cv::circle(img, a, 5, c, cv::FILLED, cv::LINE_AA);
-    cv::putText(img, r.variant.name, a + cv::Point(7, -6), cv::FONT_HERSHEY_SIMPLEX, 0.4, c, 1, cv::LINE_AA);
+    // Points crowd near the axis: labels step up in three rows.
+    cv::putText(img, r.variant.name, a + cv::Point(7, -6 - 13 * static_cast<int>(i % 3)), cv::FONT_HERSHEY_SIMPLEX, 0.4, c, 1,
+                cv::LINE_AA);
     if (std::isfinite(r.flown.reaction_median_s())) {
       const cv::Point b = px(r.flown.reaction_median_s(), r.flown.false_per_minute());
       cv::circle(img, b, 5, c, 1, cv::LINE_AA);
@@ -156,6 +159,8 @@ void plot(const std::string& file, const std::vector<Result>& results) {
   }
   if (!cv::imwrite(file, img)) throw std::runtime_error(file + ": cannot write the plot");
 }
+
+std::string frames_or_missed(int frames) { return frames < 0 ? "(missed)" : std::to_string(frames) + " frames"; }
 
 void trace(const EvalLog& log, const StageRun& run) {
   const int64_t t0 = log.frames.empty() ? 0 : log.frames.front().obs.utime;
@@ -182,7 +187,8 @@ int main(int argc, char** argv) {
                  "command, and false commands (not HOVER while the user rests; or another motion than the one asked)\n"
                  "per minute. First at GESTURE_CMD, then as the flight stage flies it. The paper's Alg. 3 is always\n"
                  "one configuration (--no-paper drops it). Logs: gpilot-capture --synthetic + gpilot-replay --stage\n"
-                 "tracker,hands, or a ./deploy/run log.");
+                 "tracker,hands, or a ./deploy/run log; a live run's log also gives its own recorded GESTURE_CMD and\n"
+                 "FLIGHT_SETPOINT as the first row (\"as flown\": the setpoint's mode when the next frame was logged).");
   std::vector<std::string> logs, sweeps, variants;
   std::string plot_file;
   bool json = false, no_paper = false, do_trace = false, list_changes = false;
@@ -236,7 +242,21 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s: %s: %lld HAND_OBS without GROUND_TRUTH left out\n", kName, path.c_str(),
                      static_cast<long long>(data.back().hand_obs_without_truth));
     }
+    // A live run's own GESTURE_CMD and FLIGHT_SETPOINT, when every log has them: measured, not re-run.
     std::vector<Result> results;
+    bool recorded = true;
+    for (const auto& log : data) recorded = recorded && !log.recorded_cmd.empty() && !log.recorded_flown.empty();
+    if (recorded) {
+      Result r{{"recorded (live run)", {}}, {}, {}, {}, {}, true};
+      for (const auto& log : data) {
+        const auto truth = truth_of(log);
+        r.decided_per_log.push_back(score_commands(truth, log.recorded_cmd, rules));
+        r.flown_per_log.push_back(score_commands(truth, log.recorded_flown, rules));
+        r.decided.add(r.decided_per_log.back());
+        r.flown.add(r.flown_per_log.back());
+      }
+      results.push_back(r);
+    }
     for (size_t ci = 0; ci < configs.size(); ++ci) {
       const Variant& v = configs[ci];
       std::fprintf(stderr, "\r%s: configuration %zu of %zu", kName, ci + 1, configs.size());
@@ -244,7 +264,7 @@ int main(int argc, char** argv) {
       FlightParams fp = base_flight;
       apply(dp, "decide", v.sets);
       apply(fp, "flight", v.sets);
-      Result r{v, {}, {}, {}, {}};
+      Result r{v, {}, {}, {}, {}, false};
       for (const auto& log : data) {
         const StageRun run = run_stages(log, dp, fp);
         if (do_trace) {
@@ -287,7 +307,7 @@ int main(int argc, char** argv) {
                 "missed", "old", "old%", "wrong%", "rest", "conf", "false/min");
     for (const auto& r : results) {
       std::printf("%s\n", row(r.variant.name, r.decided).c_str());
-      std::printf("%s\n", row("  as flown", r.flown).c_str());
+      std::printf("%s\n", row(r.live ? "  FLIGHT_SETPOINT" : "  as flown", r.flown).c_str());
       for (size_t k = 0; k < logs.size(); ++k) {
         const std::string base = logs[k].substr(logs[k].find_last_of('/') + 1);
         std::printf("%s\n", row("  " + base.substr(0, 24), r.decided_per_log[k]).c_str());
@@ -296,10 +316,10 @@ int main(int argc, char** argv) {
         const auto& f = r.flown_per_log[k];
         const int64_t t0 = data[k].frames.front().obs.utime;
         for (size_t c = 0; c < d.change_list.size(); ++c)
-          std::printf("    %7.2f s  %-7s -> %-7s  GESTURE_CMD %3d frames, flown %3d frames (-1: missed)\n",
+          std::printf("    %7.2f s  %-7s -> %-7s  GESTURE_CMD after %s, flown after %s\n",
                       (d.change_list[c].utime - t0) * 1e-6, mode_name(d.change_list[c].from_mode),
-                      mode_name(d.change_list[c].to_mode), d.change_list[c].frames,
-                      c < f.change_list.size() ? f.change_list[c].frames : -1);
+                      mode_name(d.change_list[c].to_mode), frames_or_missed(d.change_list[c].frames).c_str(),
+                      frames_or_missed(c < f.change_list.size() ? f.change_list[c].frames : -1).c_str());
         for (const auto& e : d.false_list)
           std::printf("    %7.2f s  %-7s but %-7s GESTURE_CMD for %d frames (%s)\n", (e.utime - t0) * 1e-6,
                       mode_name(e.from_mode), mode_name(e.to_mode), e.frames, e.from_mode ? "confused" : "false");
