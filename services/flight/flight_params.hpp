@@ -112,6 +112,8 @@ struct MavlinkParams {
   std::string autopilot = "px4";      //!< px4 or ardupilot: which flight mode ENGAGE asks for, how TAKEOFF is sent
   bool set_mode_on_engage = true;     //!< on ENGAGE, ask for PX4 OFFBOARD / ArduPilot GUIDED (MAV_CMD_DO_SET_MODE)
   double param_timeout_s = 1.0;       //!< on ENGAGE, wait this long for the offboard-loss parameter's value
+  std::string signing_key;            //!< MAVLink 2 signing key file (32 bytes, as gpilot-keygen makes); "" = unsigned
+  int signing_link_id = 1;            //!< our link id in signatures
 
   template <class V>
   void visit(V& v) {
@@ -125,6 +127,10 @@ struct MavlinkParams {
     v("set_mode_on_engage", set_mode_on_engage, "on ENGAGE send DO_SET_MODE: PX4 OFFBOARD or ArduPilot GUIDED");
     v("param_timeout_s", param_timeout_s, 0.05, 30.0,
       "on ENGAGE, wait this long for the autopilot's offboard-loss parameter (else refuse), s");
+    v("signing_key", signing_key,
+      "MAVLink 2 signing key file (32 bytes or 64 hex digits, mode 0600; gpilot-keygen makes one): every frame sent "
+      "is signed, only validly signed frames are read. \"\" = unsigned (HEALTH says so)");
+    v("signing_link_id", signing_link_id, 0, 255, "our link id in MAVLink 2 signatures");
   }
 };
 

@@ -14,6 +14,7 @@
 #include "flight_bridge.hpp"
 #include "flight_messages.hpp"
 #include "mavlink/offboard_loss.hpp"
+#include "bus_key.hpp"
 #include "mavlink/session.hpp"
 #include "mavlink/udp_link.hpp"
 #include "quadrotor_sim.hpp"
@@ -44,6 +45,14 @@ class FlightService {
       if (mav_params_.autopilot != "px4" && mav_params_.autopilot != "ardupilot")
         throw ConfigError("mavlink.autopilot: '" + mav_params_.autopilot + "' is not one of px4, ardupilot");
       session_.emplace(mav_params_);
+      if (!mav_params_.signing_key.empty()) {
+        try {
+          session_->enable_signing(load_bus_key(mav_params_.signing_key).bytes,
+                                   static_cast<uint8_t>(mav_params_.signing_link_id));
+        } catch (const std::runtime_error& e) {
+          throw ConfigError(std::string("mavlink.signing_key: ") + e.what());
+        }
+      }
       gate_.emplace(mavlink::offboard_loss_param(mav_params_.autopilot), fp_.max_autopilot_loss_s,
                     mav_params_.param_timeout_s);
     } else if (fp_.backend != "none") {
@@ -70,7 +79,10 @@ class FlightService {
     node_.every(1.0 / fp_.setpoint_rate_hz, [this] { tick(); });
     if (sim_) node_.every(1.0 / sim_params_.rate_hz, [this] { step_sim(); });
     if (session_) {
-      node_.every(1.0 / mav_params_.heartbeat_hz, [this] { link_->send(session_->heartbeat()); });
+      node_.every(1.0 / mav_params_.heartbeat_hz, [this] {
+        session_->set_time(node_.now());
+        link_->send(session_->heartbeat());
+      });
       node_.every(0.002, [this] { poll_mavlink(); });
       node_.every(1.0, [this] { report_link(); });
       link_->send(session_->heartbeat());
@@ -187,6 +199,8 @@ class FlightService {
       const int64_t now = wall_utime();
       const int64_t rejected_before = session_->parser().rejected();
       const auto state = session_->on_datagram(buf.data(), buf.size(), now);
+      for (; foreign_seen_ < link_->foreign(); ++foreign_seen_)
+        node_.reject("MAVLink: a datagram from " + link_->last_foreign() + ", not the autopilot at " + mav_params_.endpoint);
       for (int64_t i = rejected_before; i < session_->parser().rejected(); ++i)
         node_.reject(std::string("MAVLink: ") + session_->parser().last_reject());
       for (const auto& v : session_->take_param_values()) gate_act(gate_->on_param_value(v));
@@ -205,7 +219,9 @@ class FlightService {
     else if (!in_.vehicle || now - in_.vehicle_received > kMicrosPerSecond)
       node_.set_state(health_t::STATE_DEGRADED, "no LOCAL_POSITION_NED from " + mav_params_.endpoint + " for 1 s");
     else
-      node_.set_state(health_t::STATE_OK, "autopilot at " + mav_params_.endpoint + (in_.engaged ? ", ENGAGED" : ""));
+      node_.set_state(health_t::STATE_OK, "autopilot at " + mav_params_.endpoint +
+                                              (session_->signing() ? " (signed)" : " (unsigned)") +
+                                              (in_.engaged ? ", ENGAGED" : ""));
   }
 
   BusNode& node_;
@@ -217,6 +233,7 @@ class FlightService {
   Setpoint last_;
   std::optional<QuadrotorSim> sim_;
   std::unique_ptr<mavlink::UdpLink> link_;
+  int64_t foreign_seen_ = 0;
   std::optional<mavlink::MavlinkSession> session_;
   OperatorState operator_;
   int setpoints_since_engage_ = 0;

@@ -1,7 +1,8 @@
 #!/usr/bin/env node
 // The independent MAVLink peer for gpilot's tests: node-mavlink (npm, pinned by package-lock.json) reads the
 // bytes gpilot-flight writes, and writes bytes for gpilot's decoder to read. No network: stdin -> stdout.
-//   node peer.js decode   stdin: one hex string per line (a datagram); stdout: one JSON object per packet,
+//   node peer.js decode [KEYHEX]  stdin: one hex string per line (a datagram); stdout: one JSON object per packet
+//                         (with signed and, given the MAVLink 2 signing key, signatureValid),
 //                         then {"summary": {valid, invalid, unknown}}
 //   node peer.js encode   stdin: one JSON object per line {msg, seq, sysid, compid, fields: {camelCaseName: v}}
 //                         stdout: the v2 frame as one hex line
@@ -29,7 +30,7 @@ function lines(onLine, onEnd) {
   rl.on('close', onEnd);
 }
 
-function decode() {
+function decode(key) {
   const input = new PassThrough();
   let crcErrors = 0;
   const splitter = new MavLinkPacketSplitter({}, { onCrcError: () => { crcErrors += 1; } });
@@ -43,7 +44,9 @@ function decode() {
     if (clazz) for (const f of clazz.FIELDS) fields[f.name.replace(/^_/, '')] = data[f.name];
     process.stdout.write(json({ msg: clazz ? clazz.MSG_NAME : `UNKNOWN_${h.msgid}`, msgid: h.msgid,
       v: h.magic === 0xfd ? 2 : 1, seq: h.seq, sysid: h.sysid, compid: h.compid,
-      payloadLength: h.payloadLength, fields }) + '\n');
+      payloadLength: h.payloadLength, fields,
+      signed: !!packet.signature,
+      signatureValid: packet.signature && key ? packet.signature.matches(key) : null }) + '\n');
   });
   reader.on('end', () => {
     process.stdout.write(json({ summary: { valid: splitter.validPackages, invalid: splitter.invalidPackages,
@@ -59,7 +62,11 @@ function encode() {
     if (!clazz) throw new Error(`unknown message ${req.msg}`);
     const msg = new clazz();
     for (const [k, v] of Object.entries(req.fields || {})) msg[k] = v;
-    const bytes = new MavLinkProtocolV2(req.sysid, req.compid).serialize(msg, req.seq);
+    // req.sign = {key: 64 hex digits, linkId, timestamp: ms since the epoch}: MAVLink 2 signing, node-mavlink's own.
+    const flags = req.sign ? MavLinkProtocolV2.IFLAG_SIGNED : 0;
+    const protocol = new MavLinkProtocolV2(req.sysid, req.compid, flags);
+    let bytes = protocol.serialize(msg, req.seq);
+    if (req.sign) bytes = protocol.sign(bytes, req.sign.linkId, Buffer.from(req.sign.key, 'hex'), req.sign.timestamp);
     process.stdout.write(bytes.toString('hex') + '\n');
   }, () => {});
 }
@@ -138,7 +145,7 @@ function vehicle(port, assignments) {
 }
 
 const mode = process.argv[2];
-if (mode === 'decode') decode();
+if (mode === 'decode') decode(process.argv[3] ? Buffer.from(process.argv[3], 'hex') : null);
 else if (mode === 'encode') encode();
 else if (mode === 'table') table(process.argv.slice(3).map(Number));
 else if (mode === 'vehicle') vehicle(Number(process.argv[3]), process.argv.slice(4));

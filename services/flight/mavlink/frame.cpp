@@ -6,6 +6,7 @@
 
 #include "crc.hpp"
 #include "messages.hpp"
+#include "signing.hpp"
 
 namespace gpilot::mavlink {
 
@@ -86,12 +87,26 @@ void FrameParser::feed(const uint8_t* data, size_t n, const std::function<void(c
       drop(1);
       continue;
     }
-    if (incompat & kIncompatSigned) {
+    if ((incompat & kIncompatSigned) && !checker_) {
       // We hold no signing key, so a signature cannot be checked: such frames are not trusted.
       ++counts_.unsupported;
       last_reject_ = "signed frame (no key to check it)";
       drop(total);
       continue;
+    }
+    if (checker_ && !(incompat & kIncompatSigned)) {
+      ++counts_.unsigned_frames;
+      last_reject_ = "unsigned frame (mavlink.signing_key is set: every frame must be signed)";
+      drop(total);
+      continue;
+    }
+    if (checker_) {
+      if (const char* why = checker_->check(buf_.data(), total)) {
+        ++counts_.bad_signature;
+        last_reject_ = why;
+        drop(total);
+        continue;
+      }
     }
     Frame f;
     f.seq = buf_[4];

@@ -33,7 +33,11 @@ struct ParserCounts {
   int64_t unsupported = 0;   //!< signed frames or unknown incompatibility flags
   int64_t skipped_bytes = 0; //!< bytes outside any frame (garbage, v1 frames, resynchronisation)
   int64_t truncated = 0;     //!< a datagram that ended inside a frame
+  int64_t bad_signature = 0; //!< signing on: a signature that does not verify, or a replayed timestamp
+  int64_t unsigned_frames = 0;  //!< signing on: a frame without a signature
 };
+
+class SignatureChecker;
 
 class FrameParser {
  public:
@@ -44,8 +48,12 @@ class FrameParser {
   void end_of_datagram();
   const ParserCounts& counts() const { return counts_; }
   int64_t rejected() const {
-    return counts_.bad_crc + counts_.bad_length + counts_.unknown_id + counts_.unsupported + counts_.truncated;
+    return counts_.bad_crc + counts_.bad_length + counts_.unknown_id + counts_.unsupported + counts_.truncated +
+           counts_.bad_signature + counts_.unsigned_frames;
   }
+  // With a checker (MAVLink 2 signing, signing.hpp), only frames with a valid signature pass; without one,
+  // signed frames cannot be checked and are rejected.
+  void require_signatures(SignatureChecker* checker) { checker_ = checker; }
   // The reason of the last rejection ("bad CRC for LOCAL_POSITION_NED", ...), "" if none yet.
   const char* last_reject() const { return last_reject_; }
 
@@ -53,6 +61,7 @@ class FrameParser {
   void drop(size_t n);
   std::vector<uint8_t> buf_;
   ParserCounts counts_;
+  SignatureChecker* checker_ = nullptr;
   const char* last_reject_ = "";
 };
 

@@ -9,6 +9,12 @@ MavlinkSession::MavlinkSession(const MavlinkParams& params) : params_(params) {
   state_.landed = VehicleState::Landed::Unknown;
 }
 
+void MavlinkSession::enable_signing(const std::array<uint8_t, 32>& key, uint8_t link_id) {
+  signer_.emplace(key, link_id);
+  checker_.emplace(key);
+  parser_.require_signatures(&*checker_);
+}
+
 template <class M>
 std::vector<uint8_t> MavlinkSession::frame(const M& m) {
   Frame f;
@@ -17,7 +23,9 @@ std::vector<uint8_t> MavlinkSession::frame(const M& m) {
   f.compid = static_cast<uint8_t>(params_.component_id);
   f.msgid = M::kId;
   f.payload = pack(m);
-  return encode_frame(f);
+  std::vector<uint8_t> bytes = encode_frame(f);
+  if (signer_) signer_->sign(bytes, message_info(M::kId)->crc_extra, now_);
+  return bytes;
 }
 
 uint32_t MavlinkSession::boot_ms(int64_t now_utime) {
@@ -37,6 +45,7 @@ std::vector<uint8_t> MavlinkSession::heartbeat() {
 }
 
 std::vector<uint8_t> MavlinkSession::setpoint(const Setpoint& sp, int64_t now_utime) {
+  set_time(now_utime);
   SetPositionTargetLocalNed m;
   m.time_boot_ms = boot_ms(now_utime);
   m.vx = static_cast<float>(sp.velocity[0]);
@@ -90,6 +99,8 @@ std::vector<uint8_t> MavlinkSession::param_request_read(const std::string& name)
 
 std::optional<VehicleState> MavlinkSession::on_datagram(const uint8_t* data, size_t n, int64_t receive_utime) {
   std::optional<VehicleState> out;
+  set_time(receive_utime);
+  if (checker_) checker_->set_now(receive_utime);
   parser_.feed(data, n, [&](const Frame& f) {
     if (f.sysid != params_.target_system) {
       ++other_system_;

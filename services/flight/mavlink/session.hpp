@@ -3,6 +3,8 @@
 // LOCAL_POSITION_NED, ATTITUDE and EXTENDED_SYS_STATE into a VehicleState.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,12 +15,23 @@
 #include "../flight_types.hpp"
 #include "frame.hpp"
 #include "messages.hpp"
+#include "signing.hpp"
 
 namespace gpilot::mavlink {
 
 class MavlinkSession {
  public:
   explicit MavlinkSession(const MavlinkParams& params);
+  MavlinkSession(const MavlinkSession&) = delete;
+  MavlinkSession& operator=(const MavlinkSession&) = delete;
+
+  // MAVLink 2 signing with this 32-byte key: every frame we send is signed on link_id, and only frames with
+  // a valid signature and a growing timestamp are read.
+  void enable_signing(const std::array<uint8_t, 32>& key, uint8_t link_id);
+  bool signing() const { return signer_.has_value(); }
+  // The time our signatures carry (they also grow by one per frame): the adapter's clock, given here and
+  // with each datagram and setpoint.
+  void set_time(int64_t now_utime) { now_ = std::max(now_, now_utime); }
 
   std::vector<uint8_t> heartbeat();
   // Velocity (body FRD, m/s) and yaw rate only; now_utime sets time_boot_ms (ms since the session's first frame).
@@ -51,6 +64,9 @@ class MavlinkSession {
 
   MavlinkParams params_;
   FrameParser parser_;
+  std::optional<FrameSigner> signer_;
+  std::optional<SignatureChecker> checker_;
+  int64_t now_ = 0;
   uint8_t seq_ = 0;
   bool have_boot_ = false;
   int64_t boot_utime_ = 0;

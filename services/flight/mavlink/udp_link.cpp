@@ -64,14 +64,25 @@ bool UdpLink::send(const std::vector<uint8_t>& bytes) {
 }
 
 bool UdpLink::receive(std::vector<uint8_t>& buf) {
-  buf.resize(65536);
-  const ssize_t n = recv(fd_, buf.data(), buf.size(), 0);
-  if (n < 0) {
-    buf.clear();
-    return false;
+  const auto& want = *reinterpret_cast<const sockaddr_in*>(addr_.data());
+  for (;;) {
+    buf.resize(65536);
+    sockaddr_in from{};
+    socklen_t from_len = sizeof from;
+    const ssize_t n = recvfrom(fd_, buf.data(), buf.size(), 0, reinterpret_cast<sockaddr*>(&from), &from_len);
+    if (n < 0) {
+      buf.clear();
+      return false;
+    }
+    if (from.sin_addr.s_addr == want.sin_addr.s_addr && from.sin_port == want.sin_port) {
+      buf.resize(static_cast<size_t>(n));
+      return true;
+    }
+    ++foreign_;
+    char ip[INET_ADDRSTRLEN] = "?";
+    inet_ntop(AF_INET, &from.sin_addr, ip, sizeof ip);
+    last_foreign_ = std::string(ip) + ":" + std::to_string(ntohs(from.sin_port));
   }
-  buf.resize(static_cast<size_t>(n));
-  return true;
 }
 
 }  // namespace gpilot::mavlink
