@@ -44,6 +44,11 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
   std::vector<cv::Rect> faces;
   const int min_px = p_.face.min_face_px;
   cascade_.detectMultiScale(*img, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px));
+  return best_of(faces, k, cv::Point(), frame);
+}
+
+std::optional<FaceDetection> FaceDetector::best_of(const std::vector<cv::Rect>& faces, double k, cv::Point offset,
+                                                   const cv::Mat& frame) const {
   if (faces.empty()) return std::nullopt;
   // The largest face, ties broken by position so that the choice does not depend on detection order.
   const auto best = std::max_element(faces.begin(), faces.end(), [](const cv::Rect& a, const cv::Rect& b) {
@@ -51,9 +56,94 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
     return std::make_pair(a.y, a.x) > std::make_pair(b.y, b.x);
   });
   FaceDetection d;
-  d.face = cv::Rect2d(best->x * k, best->y * k, best->width * k, best->height * k);
+  d.face = cv::Rect2d((best->x + offset.x) * k, (best->y + offset.y) * k, best->width * k, best->height * k);
   d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
   return d;
+}
+
+// Octave o searches the frame shrunk by k0 * 2^o for faces of min_face_px .. 2.4 min_face_px (the last octave:
+// any larger): the cascade's cost per searched pixel is about the same in every octave, so the tiles' pixels
+// are the budget. A tile overlaps its neighbours by the largest face it looks for, so every face of its
+// octave lies wholly in one tile.
+void FaceDetector::plan_scan(cv::Size size) {
+  jobs_.clear();
+  jobs_for_ = size;
+  next_job_ = 0;
+  const int min_px = p_.face.min_face_px;
+  const double k0 = std::max({1.0, p_.face.downscale, std::sqrt(size.area() / std::max(1.0, p_.face.max_search_pixels))});
+  std::vector<ScanJob> octave_jobs;
+  for (double k = k0;; k *= 2) {
+    const cv::Size img(static_cast<int>(std::round(size.width / k)), static_cast<int>(std::round(size.height / k)));
+    if (std::min(img.width, img.height) < min_px) break;
+    const bool last = std::min(img.width, img.height) / 2 < min_px;
+    const int max_face = last ? 0 : static_cast<int>(std::ceil(2.4 * min_px));
+    const int overlap = last ? 0 : max_face;
+    // The fewest tiles (nx by ny) whose overlapped size fits the budget.
+    int nx = 1, ny = 1;
+    const auto tile_px = [&](int x, int y) {
+      return (static_cast<double>(img.width) / x + (x > 1 ? overlap : 0)) * (static_cast<double>(img.height) / y + (y > 1 ? overlap : 0));
+    };
+    while (!last && tile_px(nx, ny) > p_.face.scan_slice_pixels && (img.width / nx > 2 * overlap || img.height / ny > 2 * overlap)) {
+      if (static_cast<double>(img.width) / nx >= static_cast<double>(img.height) / ny) ++nx; else ++ny;
+    }
+    octave_jobs.clear();
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int x0 = i * img.width / nx, x1 = (i + 1) * img.width / nx, y0 = j * img.height / ny, y1 = (j + 1) * img.height / ny;
+        const cv::Rect tile = cv::Rect(cv::Point(x0 - overlap / 2, y0 - overlap / 2), cv::Point(x1 + overlap / 2, y1 + overlap / 2)) &
+                              cv::Rect(cv::Point(), img);
+        octave_jobs.push_back({k, tile, max_face});
+      }
+    jobs_.insert(jobs_.begin(), octave_jobs.begin(), octave_jobs.end());  // large faces (coarse octaves) first
+  }
+}
+
+int FaceDetector::scan_tiles(cv::Size frame_size) {
+  if (frame_size != jobs_for_) plan_scan(frame_size);
+  return static_cast<int>(jobs_.size());
+}
+
+std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) {
+  last_step_pixels_ = 0;
+  if (frame.empty()) return std::nullopt;
+  if (p_.face.scan_slice_pixels <= 0) {
+    last_step_pixels_ = static_cast<double>(frame.total());
+    return detect(frame);
+  }
+  if (frame.size() != jobs_for_) plan_scan(frame.size());
+  if (jobs_.empty()) return std::nullopt;
+  if (frame.channels() == 3)
+    cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
+  else
+    frame.copyTo(grey_);
+  double shrunk_for = 0;
+  const int min_px = p_.face.min_face_px;
+  std::vector<cv::Rect> faces;
+  while (true) {
+    const ScanJob& job = jobs_[next_job_];
+    if (last_step_pixels_ > 0 && last_step_pixels_ + job.tile.area() > p_.face.scan_slice_pixels) break;
+    if (job.shrink != shrunk_for) {
+      if (job.shrink > 1.0)
+        cv::resize(grey_, small_,
+                   cv::Size(static_cast<int>(std::round(frame.cols / job.shrink)), static_cast<int>(std::round(frame.rows / job.shrink))),
+                   0, 0, cv::INTER_AREA);
+      else
+        small_ = grey_;
+      shrunk_for = job.shrink;
+    }
+    last_step_pixels_ += job.tile.area();
+    next_job_ = (next_job_ + 1) % jobs_.size();
+    faces.clear();
+    cascade_.detectMultiScale(small_(job.tile & cv::Rect(cv::Point(), small_.size())), faces, p_.face.scale_factor,
+                              p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+                              job.max_face > 0 ? cv::Size(job.max_face, job.max_face) : cv::Size());
+    if (auto d = best_of(faces, job.shrink, job.tile.tl(), frame)) {
+      next_job_ = 0;
+      return d;
+    }
+    if (next_job_ == 0) break;  // the scan is complete: the next frame starts it again
+  }
+  return std::nullopt;
 }
 
 std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv::Rect& roi) {

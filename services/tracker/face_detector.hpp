@@ -34,10 +34,32 @@ class FaceDetector {
   // The same, searching only the part of roi inside frame; boxes in frame pixels.
   std::optional<FaceDetection> detect(const cv::Mat& frame, const cv::Rect& roi);
 
+  // One frame's share of a whole-frame search spread over frames, within face.scan_slice_pixels: the next
+  // tiles of the scan (octaves of face sizes, large faces first; each octave's faces min_face_px .. 2.4x that
+  // in its shrunk image, in tiles overlapping by that), the largest face of the first tile that has one. A
+  // face found, a new frame size or restart_scan() start the scan over. scan_slice_pixels 0: detect(frame).
+  std::optional<FaceDetection> scan_step(const cv::Mat& frame);
+  void restart_scan() { next_job_ = 0; }
+  //! Tiles in the scan of a frame of this size, and the pixels the last scan_step searched.
+  int scan_tiles(cv::Size frame_size);
+  double last_step_pixels() const { return last_step_pixels_; }
+
  private:
+  struct ScanJob {
+    double shrink;  //!< frame pixels per searched pixel
+    cv::Rect tile;  //!< in the shrunk image
+    int max_face;   //!< largest face searched, shrunk pixels (0: no bound)
+  };
+  void plan_scan(cv::Size frame_size);
+  std::optional<FaceDetection> best_of(const std::vector<cv::Rect>& faces, double k, cv::Point offset, const cv::Mat& frame) const;
+
   TrackerParams p_;
   cv::CascadeClassifier cascade_;
   cv::Mat grey_, small_;
+  std::vector<ScanJob> jobs_;
+  cv::Size jobs_for_;
+  size_t next_job_ = 0;
+  double last_step_pixels_ = 0;
 };
 
 }  // namespace gpilot

@@ -18,6 +18,10 @@ struct FaceDetectorParams {
   // took ~100 ms here, 10 fps while searching). A larger image is searched on a copy shrunk to this many
   // pixels (a face must then be min_face_px in the shrunk copy).
   double max_search_pixels = 640.0 * 480.0;
+  // The whole-frame search while SEARCHING or LOST is spread over frames (FaceDetector::scan_step): octaves of
+  // face sizes, each cut into overlapping tiles, at most scan_slice_pixels searched per frame (at least one
+  // tile), the large faces first. 0: the whole frame in one go every time.
+  double scan_slice_pixels = 60000.0;
 
   template <class V>
   void visit(V& v) {
@@ -27,6 +31,7 @@ struct FaceDetectorParams {
     v("min_face_px", min_face_px, 8, 1000, "smallest face searched, pixels");
     v("downscale", downscale, 1.0, 8.0, "search on a copy shrunk by this factor");
     v("max_search_pixels", max_search_pixels, 1e4, 1e8, "a face search shrinks its image to at most this many pixels");
+    v("scan_slice_pixels", scan_slice_pixels, 0.0, 1e8, "whole-frame search: pixels searched per frame, spread over frames (0: all at once)");
   }
 };
 

@@ -26,6 +26,7 @@ void UserTracker::reset() {
   out_.face.reset();
   bad_frames_ = 0;
   searches_ = 0;
+  faces_.restart_scan();
 }
 
 // DSST follows the part of the body box inside the frame (the window); the body box keeps its place and size
@@ -89,16 +90,16 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   return FaceCheck::Found;
 }
 
-// One face search within the per-frame budget: every search_full_stride-th search the whole frame (shrunk to
-// face.max_search_pixels), the others, while LOST, the last good box grown by search_local_scale (SEARCHING:
-// nothing on those). True when a track started.
+// One face search within the per-frame budget: SEARCHING, a step of the whole-frame scan (FaceDetector::
+// scan_step, face.scan_slice_pixels a frame); LOST, every search_full_stride-th frame a scan step, the others
+// the last good box grown by search_local_scale. True when a track started.
 bool UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
-  const bool full = searches_++ % p_.search_full_stride == 0;
+  const bool full = out_.status != TrackStatus::kLost || searches_++ % p_.search_full_stride == 0;
   std::optional<FaceDetection> face;
   if (full) {
-    face = faces_.detect(frame);
-  } else if (out_.status == TrackStatus::kLost) {
+    face = faces_.scan_step(frame);
+  } else {
     const cv::Rect2d& b = last_good_box_;
     const double g = p_.search_local_scale;
     const cv::Point2d c = (b.tl() + b.br()) * 0.5;
@@ -120,6 +121,7 @@ void UserTracker::lose(bool model_trusted) {
   redetect_hits_ = 0;
   redetect_ok_ = model_trusted;
   searches_ = 0;
+  faces_.restart_scan();
 }
 
 void UserTracker::track_frame(const cv::Mat& frame) {

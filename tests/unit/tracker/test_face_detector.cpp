@@ -1,4 +1,5 @@
 // The Haar face search and the head-body ratio on real photographs (data/people, see data/README.md).
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -54,6 +55,38 @@ TEST(FaceDetector, FindsTheAstronautAndHerUpperBody) {
   for (cv::Point2d p : {cv::Point2d(230, 300), cv::Point2d(215, 385), cv::Point2d(120, 260), cv::Point2d(330, 260)})
     EXPECT_TRUE(contains(r->body, p)) << p << " not in " << r->body;
   EXPECT_LE(r->body.br().y, 512.0);
+}
+
+// The whole-frame search spread over frames: each step searches at most face.scan_slice_pixels (one tile at
+// least), large faces first; a complete scan finds the face detect() finds, and then starts over.
+TEST(FaceDetector, ScanStepsFindTheFaceWithinTheBudget) {
+  TrackerParams p;
+  p.face.scan_slice_pixels = 30000;
+  const cv::Mat img = photo("messi5.jpg");
+  FaceDetector whole(p), scan(p);
+  const auto ref = whole.detect(img);
+  ASSERT_TRUE(ref.has_value());
+  const int tiles = scan.scan_tiles(img.size());
+  EXPECT_GT(tiles, 3);
+  std::optional<FaceDetection> found;
+  int steps = 0;
+  while (!found && steps < tiles) {
+    found = scan.scan_step(img);
+    ++steps;
+    EXPECT_LE(scan.last_step_pixels(), p.face.scan_slice_pixels) << "step " << steps;
+    EXPECT_GT(scan.last_step_pixels(), 0.0);
+  }
+  ASSERT_TRUE(found.has_value()) << "not found in one scan of " << tiles << " tiles";
+  EXPECT_GT(steps, 1) << "a small face should not be found in the first (coarse) step";
+  // The same face as the search over the whole frame at once (the cascade's boxes differ by a tile's cut).
+  const double inter = (found->face & ref->face).area();
+  EXPECT_GT(inter / (found->face.area() + ref->face.area() - inter), 0.7) << found->face << " vs " << ref->face;
+  // scan_slice_pixels 0: the whole frame in one step.
+  p.face.scan_slice_pixels = 0;
+  FaceDetector at_once(p);
+  const auto one = at_once.scan_step(img);
+  ASSERT_TRUE(one.has_value());
+  EXPECT_EQ(one->face, ref->face);
 }
 
 TEST(FaceDetector, FindsNoFaceOutsideTheSkier) {
