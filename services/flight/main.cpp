@@ -137,6 +137,9 @@ class FlightService {
       const std::string why = "refusing to engage: " + gate_->why();
       std::fprintf(stderr, "gpilot-flight: %s\n", why.c_str());
       refused_ = to_core(pending_engage_);
+      // An ENGAGE while engaged re-reads the parameter too: changed on the autopilot since, the answer now
+      // stands, and the vehicle hovers (as a DISENGAGE would leave it).
+      in_.engaged = false;
       node_.reject(why);
       node_.set_state(health_t::STATE_DEGRADED, why);
     }
