@@ -140,18 +140,20 @@ int main(int argc, char** argv) {
   ServiceCli cli("gpilot-launch", "Start, watch, restart and stop the gesture-pilot processes of deploy/services.yaml.");
   std::string services_file = "deploy/services.yaml";
   std::vector<std::string> var_args;
-  std::string systemd_dir;
+  std::string systemd_dir, bus_key_file;
   double duration_s = 0;
   bool engage = false;
   std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   cli.app().add_option("--services", services_file, "services file (relative paths: from the project root)");
   cli.app().add_option("--var", var_args, "name=value for ${name} in the services file (repeatable)");
   cli.app().add_option("--systemd", systemd_dir, "write one systemd unit per service into DIR and exit");
+  cli.app().add_option("--systemd-bus-key", bus_key_file,
+                       "with --systemd: the units' bus key file (Environment=GPILOT_BUS_KEY; needed at ttl > 0)");
   cli.app().add_option("--duration", duration_s, "stop everything after this many seconds");
   cli.app().add_flag("--engage", engage, "send FLIGHT_CONTROL engage once gpilot-flight reports");
   cli.app().add_option("--bin-dir", bin_dir, "where the gpilot binaries are (default: beside this one)");
 
-  return cli.run(argc, argv, [&](const Config&) -> int {
+  return cli.run(argc, argv, [&](const Config& config) -> int {
     std::map<std::string, std::string> vars;
     for (const auto& a : var_args) {
       const auto eq = a.find('=');
@@ -173,7 +175,7 @@ int main(int argc, char** argv) {
         if (!service_wanted(s, vars)) continue;
         // A source that ends a run (a scenario, a file) is restarted by systemd like any other: on a companion
         // computer it is the camera, which does not end.
-        std::ofstream(fs::path(systemd_dir) / (s.name + ".service")) << systemd_unit(s, fs::absolute(bin_dir).string(), after, url);
+        std::ofstream(fs::path(systemd_dir) / (s.name + ".service")) << systemd_unit(s, fs::absolute(bin_dir).string(), after, url, bus_key_file);
         std::printf("wrote %s/%s.service\n", systemd_dir.c_str(), s.name.c_str());
         after = s.name;
       }
@@ -181,7 +183,7 @@ int main(int argc, char** argv) {
     }
 
     setenv("GPILOT_LCM_URL", url.c_str(), 1);
-    BusNode node("gpilot-launch", url);
+    BusNode node("gpilot-launch", url, config.section<BusParams>("bus"));
     std::map<std::string, health_t> health;
     int8_t mode = -1;
     node.subscribe<health_t>("HEALTH", [&](const health_t& h, int64_t) { health[h.name] = h; });

@@ -274,8 +274,8 @@ int run_log(ViewOptions o, bool window) {
   return 0;
 }
 
-int run_live(const ViewOptions& o, bool window, const std::string& url) {
-  BusNode node(kName, url);
+int run_live(const ViewOptions& o, bool window, const std::string& url, const BusParams& bus) {
+  BusNode node(kName, url, bus);
   Viewer viewer(o, window);
   viewer.set_bus(&node);
   viewer.connect([&](const char* ch, auto handler) { node.subscribe(ch, handler); });
@@ -323,7 +323,7 @@ int main(int argc, char** argv) {
   app.add_flag("--truth", o.overlay.truth, "draw GROUND_TRUTH in green (true box, hands, expected mode)");
   app.add_flag("--skin-overlay", o.overlay.skin, "show the skin counts of HAND_OBS (and a skin mask when available)");
   app.add_flag("!--no-hud", o.overlay.hud, "no HUD strip under the frames");
-  return cli.run(argc, argv, [&](const Config&) {
+  return cli.run(argc, argv, [&](const Config& config) {
     if (o.png_every.size() == 2) {
       int n = 0;
       try {
@@ -343,6 +343,6 @@ int main(int argc, char** argv) {
     if (o.speed < 0) o.speed = window ? 1.0 : 0.0;
     if (o.hold <= 0) o.hold = o.log.empty() ? 12 : 50;
     if (!o.log.empty()) return run_log(o, window);
-    return run_live(o, window, resolve_lcm_url(cli.lcm_url()));
+    return run_live(o, window, resolve_lcm_url(cli.lcm_url()), config.section<BusParams>("bus"));
   });
 }

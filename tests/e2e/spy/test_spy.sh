@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # GIVEN Xvfb and a gpilot process publishing HEALTH, WHEN ./deploy/spy starts, THEN it loads every gpilot
-# type from our jar, its window appears, and a screenshot of the decoded HEALTH channel is saved.
+# type from our jar, its window appears, and a screenshot of the decoded HEALTH channel is saved. The bus is
+# signed (a bus key, as ./deploy/run makes): lcm-spy decodes the messages in front of their signatures.
 set -u
 build="$1"; ntypes="$2"
 root="$(cd "$(dirname "$0")/../../.." && pwd)"
@@ -15,7 +16,8 @@ cleanup() { kill $spy $health 2>/dev/null; kill $xvfb 2>/dev/null; wait 2>/dev/n
 trap cleanup EXIT
 export DISPLAY="$display"
 sleep 1
-"$build/bin/gpilot-health" --duration 30 >/dev/null & health=$!
+rm -f "$out/bus.key"; "$build/bin/gpilot-keygen" "$out/bus.key" >/dev/null || { echo "FAIL: gpilot-keygen"; exit 1; }
+GPILOT_BUS_KEY="$out/bus.key" "$build/bin/gpilot-health" --duration 30 >/dev/null & health=$!
 "$root/deploy/spy" >"$out/spy.log" 2>&1 & spy=$!
 win=""
 for _ in $(seq 1 40); do
