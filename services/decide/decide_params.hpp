@@ -19,8 +19,8 @@ struct DecideParams {
   int evidence_leave = 2;       //!< and left when its evidence falls to this
   int evidence_max = 10;        //!< evidence is capped here: letting go takes (max - leave) / decay frames
   double evidence_decay = 1.0;  //!< evidence lost per frame that does not support a command
-  double moving_ratio = 0.05;   //!< a hand this many box widths from where it was in one of the last
-  int moving_frames = 3;        //!< this many frames is moving: evidence for nothing
+  double moving_ratio = 0.07;   //!< a hand whose median position over the last moving_frames frames is this many
+  int moving_frames = 2;        //!< box widths from its median over the moving_frames before is moving: no evidence
   int direction_frames = 8;     //!< FINE/UP/DOWN direction: mean of the last this many supporting vectors
 
   template <class V>
@@ -37,8 +37,8 @@ struct DecideParams {
     v("evidence_leave", evidence_leave, 0, 1000, "evidence: a held command is left when its evidence falls to this");
     v("evidence_max", evidence_max, 1, 1000, "evidence: cap; letting go takes (max - leave) / decay frames");
     v("evidence_decay", evidence_decay, 0.0, 1000.0, "evidence: lost per frame that does not support a command");
-    v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: a hand this many box widths from where it was in one of the last");
-    v("moving_frames", moving_frames, 1, 1000, "evidence: ... this many frames is moving and supports nothing");
+    v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: median hand position shift (box widths) that is moving: no evidence");
+    v("moving_frames", moving_frames, 1, 1000, "evidence: frames in each of the two medians compared for moving_ratio");
     v("direction_frames", direction_frames, 1, 1000, "evidence: FINE/UP/DOWN direction is the mean of this many last vectors");
   }
 };

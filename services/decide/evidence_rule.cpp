@@ -3,8 +3,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace gpilot {
+namespace {
+
+double median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
 
 EvidenceRule::Class EvidenceRule::classify(int kind, Vec2 v, double lambda4) {
   if (v.is_zero()) return kNone;
@@ -28,15 +38,31 @@ void EvidenceRule::reset() {
 
 Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
   const Class c = classify(kind, vector, params_.lambda4);
-  // A hand far from where the same kind of hand was in a recent frame is moving: no evidence for anything.
-  bool moving = false;
-  for (const Seen& h : history_)
-    moving = moving || (c != kNone && h.kind == kind &&
-                        std::hypot(vector.x - h.vector.x, vector.y - h.vector.y) > params_.moving_ratio * box_width);
+  // Moving: the median position of this kind of hand over the last moving_frames frames is far from its median
+  // over the moving_frames before. Medians, because a hand found on a noisy image jumps by half its size now and
+  // then while the arm holds still (an outlier moves no median), and a drifting arm moves both.
   history_.push_back({kind, vector});
-  while (static_cast<int>(history_.size()) > params_.moving_frames) history_.pop_front();
+  while (static_cast<int>(history_.size()) > 2 * params_.moving_frames) history_.pop_front();
+  bool moving = false;
+  if (c != kNone) {
+    std::vector<double> ax, ay, bx, by;
+    const int n = static_cast<int>(history_.size());
+    for (int i = 0; i < n; ++i) {
+      if (history_[static_cast<size_t>(i)].kind != kind) continue;
+      const Vec2& v = history_[static_cast<size_t>(i)].vector;
+      const bool recent = i >= n - params_.moving_frames;
+      (recent ? ax : bx).push_back(v.x);
+      (recent ? ay : by).push_back(v.y);
+    }
+    // Not yet 2 * moving_frames frames of this kind of hand: it just came into view, on its way.
+    const size_t k = static_cast<size_t>(params_.moving_frames);
+    moving = ax.size() < k || bx.size() < k ||
+             std::hypot(median(ax) - median(bx), median(ay) - median(by)) > params_.moving_ratio * box_width;
+  }
   for (int k = 1; k < kClasses; ++k) {
-    const bool support = k == c && !moving;
+    // Motion matters for what is new: a frame of the held command's own class supports it even while the hand
+    // moves (a held arm that jitters, or sweeps within its command, is still held).
+    const bool support = k == c && (!moving || k == current_);
     evidence_[k] = std::clamp(evidence_[k] + (support ? 1.0 : -params_.evidence_decay), 0.0,
                               static_cast<double>(params_.evidence_max));
     if (support) {

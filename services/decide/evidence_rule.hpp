@@ -5,10 +5,10 @@
 // command is entered once its evidence reaches evidence_enter (the strongest one wins) and left when it falls to
 // evidence_leave (a CUSUM / sequential test in frames: a steady pose needs evidence_enter frames, a stray frame
 // decays away, and the pose just held needs (evidence_max - evidence_leave) / decay frames to be let go).
-// A hand that is more than moving_ratio box widths from where the same kind of hand was in any of the last
-// moving_frames frames is on its way somewhere: it is evidence for nothing (an arm going out or coming down
-// passes through the DOWN sector for ~0.3 s; lowered slowly, for over a second, and only the drift over several
-// frames tells it from a held pose's jitter).
+// A hand whose median position over the last moving_frames frames is more than moving_ratio box widths from its
+// median over the moving_frames before is on its way somewhere: it is evidence for nothing (an arm going out or
+// coming down passes through the DOWN sector for ~0.3 s; lowered slowly, for over a second: only the drift over
+// several frames tells it from a held pose, and the medians ignore the jumps of a hand found on a noisy image).
 // FINE's direction is the mean of the last direction_frames vectors of its class, UP/DOWN's the mean y.
 #pragma once
 
@@ -42,7 +42,7 @@ class EvidenceRule {
   std::array<double, kClasses> evidence_{};
   Class current_ = kNone;
   struct Seen { int kind; Vec2 vector; };
-  std::deque<Seen> history_;  // the last moving_frames observations
+  std::deque<Seen> history_;  // the last 2 * moving_frames observations
   std::array<std::deque<Vec2>, kClasses> recent_;  // the last direction_frames supporting vectors per class
 };
 

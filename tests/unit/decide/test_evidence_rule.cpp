@@ -13,7 +13,8 @@ namespace {
 constexpr int kOut = 1, kFront = 2;
 constexpr double kBox = 200.0;  // px: moving_ratio 0.03 -> a hand moving more than 6 px a frame supports nothing
 
-// Numbers of their own (not the defaults), so that each test can count its frames.
+// Numbers of their own (not the defaults), so that each test can count its frames. With moving_frames 1 a
+// hand is compared with where it was a frame before: its first frame in view is on its way (evidence for nothing).
 DecideParams evidence_params() {
   DecideParams p;
   p.rule = "evidence";
@@ -38,9 +39,10 @@ TEST(EvidenceRule, ClassifiesOneObservationLikeAlg3SnapsAMean) {
   EXPECT_EQ(EvidenceRule::classify(0, {}, 0.5), EvidenceRule::kNone);
 }
 
-TEST(EvidenceRule, SteadyPoseIsEnteredOnItsSixthFrame) {
+TEST(EvidenceRule, SteadyPoseIsEnteredOnItsSeventhFrame) {
+  // the first frame has nothing to compare with, then 6 frames of evidence
   EvidenceRule r(evidence_params());
-  for (int i = 1; i <= 5; ++i) EXPECT_EQ(r.update(kOut, {-100, 10}, kBox).mode, GestureMode::Hover) << i;
+  for (int i = 1; i <= 6; ++i) EXPECT_EQ(r.update(kOut, {-100, 10}, kBox).mode, GestureMode::Hover) << i;
   const Decision d = r.update(kOut, {-100, 10}, kBox);
   EXPECT_EQ(d.mode, GestureMode::Fine);
   EXPECT_DOUBLE_EQ(d.out_mean.x, -100);
@@ -69,7 +71,7 @@ TEST(EvidenceRule, AMovingHandIsEvidenceForNothing) {
   // FINE comes on the 6th still frame.
   EvidenceRule r(evidence_params());
   Vec2 v{-60, 110};
-  r.update(kOut, v, kBox);  // the first frame of a hand cannot be moving: evidence 1 for DOWN
+  r.update(kOut, v, kBox);  // the first frame of a hand in view: nothing to compare with, on its way
   for (int i = 0; i < 12; ++i) {
     v = {v.x - 5, v.y - 5};  // 7.1 px a frame
     EXPECT_EQ(r.update(kOut, v, kBox).mode, GestureMode::Hover) << i;
@@ -83,7 +85,8 @@ TEST(EvidenceRule, AMovingHandIsEvidenceForNothing) {
 
 TEST(EvidenceRule, AnArmLoweredSlowlyDriftsAndIsNotHeld) {
   // 2.5 px a frame down through the DOWN sector: still from one frame to the next (< 0.03 * 200 = 6 px), but
-  // 7.5 px from where it was 3 frames ago. With moving_frames 3 it never commands DOWN; with 1 it does.
+  // the median of the last 3 frames is 7.5 px from that of the 3 before. With moving_frames 3 it never commands
+  // DOWN; with 1 it does.
   DecideParams p = evidence_params();
   p.moving_frames = 3;
   EvidenceRule slow(p), jittery(evidence_params());
@@ -95,11 +98,29 @@ TEST(EvidenceRule, AnArmLoweredSlowlyDriftsAndIsNotHeld) {
   }
   EXPECT_FALSE(down_slow);
   EXPECT_TRUE(down_one);
-  // and a held pose with a pixel of jitter is held
+  // and a pose held with a pixel of jitter is commanded once both 3-frame medians exist (6th frame) and 6 frames
+  // of evidence later (11th)
   EvidenceRule held(p);
   GestureMode m = GestureMode::Hover;
-  for (int i = 0; i < 10; ++i) m = held.update(kOut, {-100.0 + (i % 2), 120}, kBox).mode;
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(held.update(kOut, {-100.0 + (i % 2), 120}, kBox).mode, GestureMode::Hover) << i;
+  for (int i = 10; i < 11; ++i) m = held.update(kOut, {-100.0 + (i % 2), 120}, kBox).mode;
   EXPECT_EQ(m, GestureMode::Down);
+}
+
+TEST(EvidenceRule, AHandFoundOffItsPlaceNowAndThenMovesNoMedian) {
+  // Held out, found 50 px off its place every 4th frame (a noisy image): with 3-frame medians the pose is
+  // commanded and stays commanded; with 1 frame each jump is motion and the evidence keeps falling back.
+  DecideParams p = evidence_params();
+  p.moving_frames = 3;
+  EvidenceRule medians(p), single(evidence_params());
+  int held_medians = 0, held_single = 0;
+  for (int i = 0; i < 100; ++i) {
+    const Vec2 v = i % 4 == 3 ? Vec2{-100, 10} : Vec2{-150, 10};
+    held_medians += medians.update(kOut, v, kBox).mode == GestureMode::Fine;
+    held_single += single.update(kOut, v, kBox).mode == GestureMode::Fine;
+  }
+  EXPECT_EQ(held_medians, 100 - 10);  // from the 11th frame on (6 frames to have both medians, 6 of evidence)
+  EXPECT_EQ(held_single, 0);
 }
 
 TEST(EvidenceRule, PointingTheOtherWaySwitchesWithoutAveragingBothArms) {
@@ -120,12 +141,12 @@ TEST(EvidenceRule, PointingTheOtherWaySwitchesWithoutAveragingBothArms) {
 TEST(EvidenceRule, UpAndDownSnapXAndFrontGivesZ) {
   EvidenceRule r(evidence_params());
   Decision d;
-  for (int i = 0; i < 6; ++i) d = r.update(kOut, {30, -90}, kBox);
+  for (int i = 0; i < 7; ++i) d = r.update(kOut, {30, -90}, kBox);
   EXPECT_EQ(d.mode, GestureMode::Up);
   EXPECT_EQ(d.out_mean.x, 0.0);
   EXPECT_DOUBLE_EQ(d.out_mean.y, -90);
   EvidenceRule f(evidence_params());
-  for (int i = 0; i < 6; ++i) d = f.update(kFront, {2, 25}, kBox);
+  for (int i = 0; i < 7; ++i) d = f.update(kFront, {2, 25}, kBox);
   EXPECT_EQ(d.mode, GestureMode::Further);
   EXPECT_EQ(d.z, -1.0);
 }
@@ -134,15 +155,15 @@ TEST(EvidenceRule, ThresholdsComeFromParams) {
   DecideParams p = evidence_params();
   p.evidence_enter = 3;
   EvidenceRule r(p);
-  r.update(kFront, {0, -30}, kBox);
-  r.update(kFront, {0, -30}, kBox);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Hover) << i;
   EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Closer);
 }
 
 TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
   const DecideParams p;
   EXPECT_EQ(p.rule, "evidence");
-  // A steady pose is commanded on its 3rd frame (0.12 s at 25 fps), the paper's Alg. 3 on its 31st.
+  // A steady pose is commanded on its 6th frame (0.2 s at 25 fps: two 2-frame medians to tell it still, then 3
+  // frames of evidence), the paper's Alg. 3 on its 31st.
   GestureDecider d(p);
   HandObservation o;
   o.kind = HandObservation::Kind::Front;
@@ -150,11 +171,12 @@ TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
   o.user_box_width = kBox;
   o.track_id = 1;
   std::vector<GestureMode> modes;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 6; ++i) {
     o.utime = 1'000'000 + i * 40'000;
     modes.push_back(d.update(o).mode);
   }
-  EXPECT_EQ(modes, (std::vector<GestureMode>{GestureMode::Hover, GestureMode::Hover, GestureMode::Closer}));
+  EXPECT_EQ(modes, (std::vector<GestureMode>{GestureMode::Hover, GestureMode::Hover, GestureMode::Hover,
+                                             GestureMode::Hover, GestureMode::Hover, GestureMode::Closer}));
 }
 
 TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {
@@ -165,14 +187,14 @@ TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {
   o.user_box_width = kBox;
   o.track_id = 1;
   GestureCommand c;
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 7; ++i) {
     o.utime = 1'000'000 + i * 40'000;
     o.seq = i;
     c = d.update(o);
   }
-  EXPECT_EQ(c.mode, GestureMode::Fine);  // the 6th frame: Alg. 3 would wait for the 31st
+  EXPECT_EQ(c.mode, GestureMode::Fine);  // the 7th frame: Alg. 3 would wait for the 31st
   EXPECT_DOUBLE_EQ(c.direction[0], -0.5);
-  EXPECT_EQ(c.n_out, 6);                 // the buffers' counts still go out
+  EXPECT_EQ(c.n_out, 7);                 // the buffers' counts still go out
   o.utime += 600'000;                    // a gap: everything starts again
   EXPECT_EQ(d.update(o).mode, GestureMode::Hover);
   EXPECT_EQ(d.last_reset(), GestureDecider::Reset::Gap);
