@@ -61,6 +61,8 @@ void ParamReader::operator()(const char* key, std::string& value, const char*) {
 void ParamReader::finish() const {
   if (!node_ || !node_.IsMap()) return;
   for (const auto& kv : node_) {
+    // A list or map as a key ("? [a]: 1") has no name: yaml-cpp's as<string>() would throw past ConfigError.
+    if (!kv.first.IsScalar()) throw ConfigError(path_ + ": a key that is not a name (a list or a map)");
     const std::string key = kv.first.as<std::string>();
     if (std::find(seen_.begin(), seen_.end(), key) == seen_.end())
       throw ConfigError(path_ + "." + key + ": unknown key (see deploy/config/default.yaml for the keys of '" +
@@ -158,7 +160,10 @@ void Config::set(const std::string& assignment) {
 
 std::vector<std::string> Config::section_names() const {
   std::vector<std::string> names;
-  for (const auto& kv : root_) names.push_back(kv.first.as<std::string>());
+  for (const auto& kv : root_) {
+    if (!kv.first.IsScalar()) throw ConfigError(origin_ + ": a section name that is not a name (a list or a map)");
+    names.push_back(kv.first.as<std::string>());
+  }
   return names;
 }
 

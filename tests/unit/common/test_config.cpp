@@ -87,6 +87,15 @@ TEST(Config, UnknownKeyIsAnErrorNamingIt) {
             "<string>: unknown section 'hand' (see deploy/config/default.yaml)");
 }
 
+// Found by the config fuzz target (tests/fuzz/config/crash-map-as-key): a map as a key made yaml-cpp throw
+// BadConversion past ConfigError, so a service died on its config with an uncaught exception.
+TEST(Config, AKeyThatIsNotANameIsAnError) {
+  const Config c = Config::from_string("hands:\n  skin:\n   ? threshold: 0.6\n");
+  EXPECT_EQ(error_of([&] { validate_config(c); }), "hands.skin: a key that is not a name (a list or a map)");
+  const Config top = Config::from_string("? [hands]\n: 1\n");
+  EXPECT_EQ(error_of([&] { validate_config(top); }), "<string>: a section name that is not a name (a list or a map)");
+}
+
 TEST(Config, OutOfRangeAndWrongTypeAreErrors) {
   EXPECT_EQ(error_of([] { Config::from_string("decide:\n  buffer_size: 0\n").section<DecideParams>("decide"); }),
             "decide.buffer_size: 0 is out of range [1, 10000]");
