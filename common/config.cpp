@@ -7,6 +7,19 @@
 
 namespace gpilot {
 
+void ParamCheck::require(bool ok, const char* key, const std::string& why) const {
+  if (!ok) throw ConfigError(path_ + "." + key + ": " + why);
+}
+
+void ParamCheck::choice(const char* key, const std::string& value, std::initializer_list<const char*> choices) const {
+  std::string list;
+  for (const char* c : choices) {
+    if (value == c) return;
+    list += (list.empty() ? "" : ", ") + std::string(c);
+  }
+  throw ConfigError(path_ + "." + key + ": '" + value + "' is not one of " + list);
+}
+
 ParamReader::ParamReader(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
   if (node_ && !node_.IsNull() && !node_.IsMap())
     throw ConfigError(path_ + ": expected a map of keys, got a " + (node_.IsSequence() ? "list" : "value"));

@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -18,6 +21,38 @@ class ConfigError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The rules one key's range cannot say: a string that names one of a few choices, and keys that must agree
+// (min below max). A Params struct states them in an optional member
+//   void check(const ParamCheck& c) const { c.choice("backend", backend, {"sim", "mavlink", "none"}); ... }
+// that runs each time the struct is read (Config::section, ParamReader::group), so validate_config, which
+// reads every section before the bus starts, stops a process on them with the key named.
+class ParamCheck {
+ public:
+  explicit ParamCheck(std::string path) : path_(std::move(path)) {}
+
+  // Throws ConfigError "path.key: why" unless ok.
+  void require(bool ok, const char* key, const std::string& why) const;
+  // Throws ConfigError "path.key: 'value' is not one of a, b, c" unless value is one of choices.
+  void choice(const char* key, const std::string& value, std::initializer_list<const char*> choices) const;
+
+ private:
+  std::string path_;
+};
+
+namespace detail {
+template <class P, class = void>
+struct HasCheck : std::false_type {};
+template <class P>
+struct HasCheck<P, std::void_t<decltype(std::declval<const P&>().check(std::declval<const ParamCheck&>()))>>
+    : std::true_type {};
+}  // namespace detail
+
+// Runs params.check() when the struct has one; path is its section ("flight", "hands.skin.adapt").
+template <class P>
+void check_params(const P& params, const std::string& path) {
+  if constexpr (detail::HasCheck<P>::value) params.check(ParamCheck(path));
+}
 
 // Reads one YAML map into a Params struct: keys present overwrite defaults, every value is range
 // checked, and a key that the struct does not declare is an error.
@@ -35,6 +70,7 @@ class ParamReader {
     ParamReader sub(child(key), qualified(key));
     params.visit(sub);
     sub.finish();
+    check_params(params, qualified(key));
     mark(key);
   }
 
@@ -106,6 +142,7 @@ class Config {
     ParamReader reader(root_[name], name);
     params.visit(reader);
     reader.finish();
+    check_params(params, name);
     return params;
   }
 

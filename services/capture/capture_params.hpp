@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "config.hpp"
 #include "synthetic_params.hpp"
 
 namespace gpilot {
@@ -27,6 +28,7 @@ struct CaptureParams {
     v("camera_retry_s", camera_retry_s, 0.05, 60.0, "wait before reopening a lost camera, s");
     v.group("synthetic", synthetic);
   }
+  void check(const ParamCheck& c) const { c.choice("pixel_format", pixel_format, {"BGR8", "GRAY8", "JPEG"}); }
 };
 
 }  // namespace gpilot

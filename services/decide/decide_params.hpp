@@ -15,7 +15,7 @@ struct DecideParams {
   double lambda4 = 0.5;         //!< x := 0 when |y| > |lambda4 x| (paper 0.5)
   double gap_timeout_s = 0.5;   //!< a gap between observations longer than this empties the buffers
   // rule evidence (frames of evidence; see evidence_rule.hpp)
-  int evidence_enter = 3;       //!< a command is entered at this much evidence (a steady pose: this many frames)
+  int evidence_enter = 4;       //!< a command is entered at this much evidence (a steady pose: this many frames)
   int evidence_leave = 2;       //!< and left when its evidence falls to this
   int evidence_max = 10;        //!< evidence is capped here: letting go takes (max - leave) / decay frames
   double evidence_decay = 1.0;  //!< evidence lost per frame that does not support a command
@@ -26,8 +26,6 @@ struct DecideParams {
   template <class V>
   void visit(V& v) {
     v("rule", rule, "decision rule: paper (Alg. 3 over the state buffers) or evidence (per-command evidence, hysteresis)");
-    if (rule != "paper" && rule != "evidence")
-      throw ConfigError("decide.rule: '" + rule + "' is not a rule (paper, evidence)");
     v("buffer_size", buffer_size, 1, 10000, "observations kept in each state buffer (paper 60)");
     v("out_threshold", out_threshold, 0, 10000, "non-zero S_out entries needed, more than (paper 30)");
     v("front_threshold", front_threshold, 0, 10000, "higher/lower S_front entries needed, more than (paper 30)");
@@ -40,6 +38,20 @@ struct DecideParams {
     v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: median hand position shift (box widths) that is moving: no evidence");
     v("moving_frames", moving_frames, 1, 1000, "evidence: frames in each of the two medians compared for moving_ratio");
     v("direction_frames", direction_frames, 1, 1000, "evidence: FINE/UP/DOWN direction is the mean of this many last vectors");
+  }
+  void check(const ParamCheck& c) const {
+    c.choice("rule", rule, {"paper", "evidence"});
+    // "More than the threshold" of a buffer_size buffer: a threshold of buffer_size or more never decides.
+    c.require(out_threshold < buffer_size, "out_threshold",
+              std::to_string(out_threshold) + " must be below buffer_size " + std::to_string(buffer_size));
+    c.require(front_threshold < buffer_size, "front_threshold",
+              std::to_string(front_threshold) + " must be below buffer_size " + std::to_string(buffer_size));
+    // Evidence is capped at evidence_max, so a higher evidence_enter is never reached; a command left at
+    // evidence_enter or above would be left the frame it was entered.
+    c.require(evidence_enter <= evidence_max, "evidence_enter",
+              std::to_string(evidence_enter) + " must be at most evidence_max " + std::to_string(evidence_max));
+    c.require(evidence_leave < evidence_enter, "evidence_leave",
+              std::to_string(evidence_leave) + " must be below evidence_enter " + std::to_string(evidence_enter));
   }
 };
 

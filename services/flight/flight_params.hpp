@@ -4,6 +4,9 @@
 
 #include <string>
 
+#include "config.hpp"
+#include "mavlink/endpoint.hpp"
+
 namespace gpilot {
 
 struct FlightParams {
@@ -66,6 +69,13 @@ struct FlightParams {
       "no closing in while the user box is this many image heights tall (0: no limit)");
     v("max_autopilot_loss_s", max_autopilot_loss_s, 0.0, 60.0,
       "MAVLink: refuse ENGAGE unless the autopilot's offboard-loss failsafe (COM_OF_LOSS_T/GUID_TIMEOUT) is <= this, s");
+  }
+  void check(const ParamCheck& c) const {
+    c.choice("backend", backend, {"sim", "mavlink", "none"});
+    // An empty band holds every vertical motion at zero; an inverted one would let the two limits fight.
+    c.require(min_height_m < max_height_m, "min_height_m",
+              ParamWriter::format_number(min_height_m, false) + " must be below max_height_m " +
+                  ParamWriter::format_number(max_height_m, false));
   }
 };
 
@@ -131,6 +141,14 @@ struct MavlinkParams {
       "MAVLink 2 signing key file (32 bytes or 64 hex digits, mode 0600; gpilot-keygen makes one): every frame sent "
       "is signed, only validly signed frames are read. \"\" = unsigned (HEALTH says so)");
     v("signing_link_id", signing_link_id, 0, 255, "our link id in MAVLink 2 signatures");
+  }
+  void check(const ParamCheck& c) const {
+    c.choice("autopilot", autopilot, {"px4", "ardupilot"});
+    try {
+      (void)mavlink::parse_endpoint(endpoint);
+    } catch (const std::invalid_argument& e) {
+      c.require(false, "endpoint", e.what());
+    }
   }
 };
 

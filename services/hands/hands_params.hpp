@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "config.hpp"
+
 namespace gpilot {
 
 // The skin model that learns the user and the scene (SkinAdapter): none of these is the paper's (its future work).
@@ -45,6 +47,11 @@ struct SkinAdaptParams {
     v("min_scene_samples", min_scene_samples, 1, 1000000, "a scene sample with fewer pixels is ignored");
     v("rebuild_frames", rebuild_frames, 1, 10000, "rebuild the adapted table at most every N frames");
     v("smoothing_sigma", smoothing_sigma, 0.0, 8.0, "Gaussian blur of the learnt histograms, bins");
+  }
+  void check(const ParamCheck& c) const {
+    c.require(face_band_top < face_band_bottom, "face_band_top",
+              ParamWriter::format_number(face_band_top, false) + " must be above (less than) face_band_bottom " +
+                  ParamWriter::format_number(face_band_bottom, false));
   }
 };
 
@@ -134,6 +141,13 @@ struct HandsParams {
     v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
     v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
+  }
+  void check(const ParamCheck& c) const {
+    // The face/neck band and the legs band are cut from the same box: together they must leave some of it.
+    c.require(face_remove_ratio + legs_remove_ratio < 1.0, "legs_remove_ratio",
+              "face_remove_ratio + legs_remove_ratio = " +
+                  ParamWriter::format_number(face_remove_ratio + legs_remove_ratio, false) +
+                  " removes the whole user box (must be below 1)");
   }
 };
 

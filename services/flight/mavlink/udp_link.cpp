@@ -14,24 +14,6 @@
 
 namespace gpilot::mavlink {
 
-Endpoint parse_endpoint(const std::string& text) {
-  const std::string prefix = "udp:";
-  if (text.compare(0, prefix.size(), prefix) != 0)
-    throw std::invalid_argument("MAVLink endpoint '" + text + "' must be udp:HOST:PORT");
-  const std::string rest = text.substr(prefix.size());
-  const size_t colon = rest.rfind(':');
-  if (colon == std::string::npos || colon == 0)
-    throw std::invalid_argument("MAVLink endpoint '" + text + "' must be udp:HOST:PORT");
-  Endpoint e;
-  e.host = rest.substr(0, colon);
-  const std::string port = rest.substr(colon + 1);
-  if (port.empty() || port.find_first_not_of("0123456789") != std::string::npos || port.size() > 5 ||
-      std::stoi(port) < 1 || std::stoi(port) > 65535)
-    throw std::invalid_argument("MAVLink endpoint '" + text + "': port must be 1..65535");
-  e.port = std::stoi(port);
-  return e;
-}
-
 UdpLink::UdpLink(const Endpoint& endpoint) {
   addrinfo hints{};
   hints.ai_family = AF_INET;

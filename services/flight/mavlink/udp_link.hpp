@@ -6,15 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "endpoint.hpp"
+
 namespace gpilot::mavlink {
-
-struct Endpoint {
-  std::string host;
-  int port = 0;
-};
-
-// "udp:HOST:PORT" -> Endpoint; throws std::invalid_argument with the reason.
-Endpoint parse_endpoint(const std::string& text);
 
 class UdpLink {
  public:

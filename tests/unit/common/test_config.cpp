@@ -125,6 +125,55 @@ TEST(Config, SetOverrides) {
             "decide.lambda5: unknown key (see deploy/config/default.yaml for the keys of 'decide')");
 }
 
+// Rules a key's range cannot say, checked when a section is read (so validate_config stops a process on them
+// before the bus starts), each naming its key.
+TEST(Config, StringChoicesAreChecked) {
+  const auto err = [](const std::string& set) {
+    return error_of([&] {
+      Config c;
+      c.set(set);
+      validate_config(c);
+    });
+  };
+  EXPECT_EQ(err("flight.backend=simm"), "flight.backend: 'simm' is not one of sim, mavlink, none");
+  EXPECT_EQ(err("capture.pixel_format=RGB8"), "capture.pixel_format: 'RGB8' is not one of BGR8, GRAY8, JPEG");
+  EXPECT_EQ(err("mavlink.autopilot=apm"), "mavlink.autopilot: 'apm' is not one of px4, ardupilot");
+  EXPECT_EQ(err("decide.rule=majority"), "decide.rule: 'majority' is not one of paper, evidence");
+  EXPECT_EQ(err("mavlink.endpoint=tcp:127.0.0.1:5760"),
+            "mavlink.endpoint: MAVLink endpoint 'tcp:127.0.0.1:5760' must be udp:HOST:PORT");
+  EXPECT_EQ(err("mavlink.endpoint=udp:127.0.0.1:70000"),
+            "mavlink.endpoint: MAVLink endpoint 'udp:127.0.0.1:70000': port must be 1..65535");
+  // every choice that is one passes
+  for (const char* ok : {"flight.backend=mavlink", "flight.backend=none", "capture.pixel_format=JPEG",
+                         "capture.pixel_format=GRAY8", "mavlink.autopilot=ardupilot", "decide.rule=paper"})
+    EXPECT_EQ(err(ok), "<no error>") << ok;
+}
+
+TEST(Config, CrossFieldRulesAreChecked) {
+  const auto err = [](const std::string& yaml) {
+    return error_of([&] { validate_config(Config::from_string(yaml)); });
+  };
+  EXPECT_EQ(err("flight: {min_height_m: 5, max_height_m: 2}"), "flight.min_height_m: 5.0 must be below max_height_m 2.0");
+  EXPECT_EQ(err("flight: {min_height_m: 2, max_height_m: 2}"), "flight.min_height_m: 2.0 must be below max_height_m 2.0");
+  EXPECT_EQ(err("decide: {buffer_size: 20}"), "decide.out_threshold: 30 must be below buffer_size 20");
+  EXPECT_EQ(err("decide: {out_threshold: 60}"), "decide.out_threshold: 60 must be below buffer_size 60");
+  EXPECT_EQ(err("decide: {front_threshold: 60}"), "decide.front_threshold: 60 must be below buffer_size 60");
+  EXPECT_EQ(err("decide: {evidence_enter: 11}"), "decide.evidence_enter: 11 must be at most evidence_max 10");
+  EXPECT_EQ(err("decide: {evidence_leave: 3}"), "decide.evidence_leave: 3 must be below evidence_enter 3");
+  EXPECT_EQ(err("hands: {face_remove_ratio: 0.6, legs_remove_ratio: 0.4}"),
+            "hands.legs_remove_ratio: face_remove_ratio + legs_remove_ratio = 1.0 removes the whole user box (must be below 1)");
+  // a nested group is checked under its own path
+  EXPECT_EQ(err("hands: {skin: {adapt: {face_band_top: 0.9}}}"),
+            "hands.skin.adapt.face_band_top: 0.9 must be above (less than) face_band_bottom 0.85");
+  // the same keys moved together pass
+  EXPECT_EQ(err("flight: {min_height_m: 0.2, max_height_m: 0.3}\ndecide: {buffer_size: 20, out_threshold: 10, "
+                "front_threshold: 19}"),
+            "<no error>");
+  // a stage reading its section gets the same check (not only validate_config)
+  EXPECT_EQ(error_of([] { Config::from_string("decide: {buffer_size: 5}").section<DecideParams>("decide"); }),
+            "decide.out_threshold: 30 must be below buffer_size 5");
+}
+
 TEST(Config, MissingFileIsAnError) {
   EXPECT_EQ(error_of([] { Config::from_file("/nonexistent/gpilot.yaml"); }),
             "/nonexistent/gpilot.yaml: cannot open config file");
@@ -159,6 +208,9 @@ TEST(Config, ProcessExitsNonZeroOnBadConfig) {
   EXPECT_EQ(run("--set hands.lambda1=-1"), 2);
   EXPECT_EQ(run("--set hands.nokey=1"), 2);
   EXPECT_EQ(run("--config /nonexistent.yaml"), 2);
+  EXPECT_EQ(run("--set flight.backend=simm"), 2);
+  EXPECT_EQ(run("--set flight.min_height_m=20"), 2);
+  EXPECT_EQ(run("--set decide.out_threshold=60"), 2);
 }
 
 }  // namespace

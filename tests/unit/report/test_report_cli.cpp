@@ -50,7 +50,7 @@ TEST_F(ReportCliTest, WritesSummaryAndPlotAndPrintsATable) {
 }
 
 TEST_F(ReportCliTest, JsonOnStdoutAndTheBufferSizeFromConfig) {
-  const test::CommandResult r = report(log + " --json --set decide.buffer_size=20");
+  const test::CommandResult r = report(log + " --json --set decide.buffer_size=20 --set decide.out_threshold=10 --set decide.front_threshold=10");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.front(), '{');
   EXPECT_NE(r.out.find("\"settle_frames\": 11"), std::string::npos) << r.out;
