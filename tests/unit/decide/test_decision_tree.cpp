@@ -109,16 +109,21 @@ TEST(DecisionTree, FrontHigherComesCloserLowerGoesFurtherAtTheBoundary) {
 }
 
 TEST(DecisionTree, OutHasPriorityOverFront) {
+  // GIVEN both buffers past their thresholds: S_out 31 of 60 non-zero, S_front all 60 above the body centre
   Buffers b;
-  for (int i = 0; i < 31; ++i) {
-    b.out.push({-50, 0});
-    b.front.push({});
-  }
-  for (int i = 0; i < 29; ++i) {
-    b.out.push({});
+  for (int i = 0; i < 60; ++i) {
+    b.out.push(i < 31 ? Vec2{-50, 0} : Vec2{});
     b.front.push({0, -10});
   }
-  EXPECT_EQ(decide(b).mode, GestureMode::Fine);
+  const Decision d = decide(b);
+  ASSERT_GT(d.n_out, DecideParams{}.out_threshold);
+  ASSERT_GT(d.n_front_higher, DecideParams{}.front_threshold);
+  // and S_front alone would come closer
+  Buffers front_only;
+  front_only.fill_front(60, {0, -10});
+  ASSERT_EQ(decide(front_only).mode, GestureMode::Closer);
+  // THEN Alg. 3 tests S_out first: FINE
+  EXPECT_EQ(d.mode, GestureMode::Fine);
 }
 
 TEST(DecisionTree, MixedFrontBelowThresholdOnBothSidesHovers) {

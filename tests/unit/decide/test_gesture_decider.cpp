@@ -56,6 +56,12 @@ TEST(GestureDecider, DirectionDoesNotChangeWithRange) {
     near_c = near_d.update(out_obs(i, {-120, 30}, 240));
     far_c = far_d.update(out_obs(i, {-60, 15}, 120));
   }
+  // a FINE command both times (zero directions would compare equal whatever the normalisation did)
+  ASSERT_EQ(near_c.mode, GestureMode::Fine);
+  ASSERT_EQ(far_c.mode, GestureMode::Fine);
+  // in box widths: (-120, 30) / 240
+  EXPECT_DOUBLE_EQ(near_c.direction[0], -0.5);
+  EXPECT_DOUBLE_EQ(near_c.direction[1], 0.125);
   EXPECT_DOUBLE_EQ(near_c.direction[0], far_c.direction[0]);
   EXPECT_DOUBLE_EQ(near_c.direction[1], far_c.direction[1]);
 }
