@@ -15,6 +15,7 @@
 #include "hands/seq_pairer.hpp"
 #include "image_codec.hpp"
 #include "paths.hpp"
+#include "seq_gaps.hpp"
 #include "tracker/tracker_params.hpp"
 
 namespace gpilot {
@@ -89,6 +90,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     HandObserver observer;
     SeqPairer<image_t, user_track_t> pairer;
     int64_t frames_dropped = 0, tracks_dropped = 0;
+    SeqGaps gaps;
   };
   const auto params = config.section<HandsParams>("hands");
   const std::string model_path = resolve_project_path(params.skin.model);
@@ -112,7 +114,14 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     node.publish("HAND_OBS", obs);
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
   };
-  node.subscribe<image_t>("CAMERA", [handle, &pairer](const image_t& m, int64_t) { handle(pairer.add_frame(m.seq, m)); });
+  // A short CAMERA queue, as the tracker's (tracker.camera_queue): LCM drops the frames that arrive while it is
+  // full; a skipped frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the
+  // frames this stage published a HAND_OBS of.
+  auto& gaps = state->gaps;
+  node.subscribe<image_t>("CAMERA", [&node, &gaps, handle, &pairer](const image_t& m, int64_t) {
+    for (int64_t n = gaps.skipped_before(m.seq); n > 0; --n) node.drop();
+    handle(pairer.add_frame(m.seq, m));
+  }, config.section<TrackerParams>("tracker").camera_queue);
   node.subscribe<user_track_t>("USER_TRACK", [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
   node.set_state(health_t::STATE_DEGRADED, "waiting for CAMERA and USER_TRACK");
   return state;

@@ -102,6 +102,11 @@ struct TrackerParams {
   // whole (shrunk) frame, else, while LOST, the last good box grown by search_local_scale at full resolution.
   int search_full_stride = 2;          //!< 1: the whole frame every frame
   double search_local_scale = 2.0;     //!< local window = last body box grown by this factor (each side)
+  // The bus adapter (gpilot-tracker): LCM queues 30 frames a channel by default, so a slow stage fell about a
+  // second behind; at most camera_queue frames wait now, LCM drops those arriving while the queue is full, and
+  // the stage counts the skipped ones (HEALTH.dropped).
+  int camera_queue = 2;
+  int opencv_threads = 0;              //!< cv::setNumThreads for the stage's process (0: no worker threads)
   // Not in the paper, which searches the face only to start: DSST's scale drifts by tens of percent while the
   // drone backs off or closes in, and every hand rule is a ratio of the box. Every this many tracked frames
   // the face is looked for where the box says it is (a small window, ~1 ms), and the box re-anchored on it
@@ -131,6 +136,8 @@ struct TrackerParams {
     v("lost_search_frames", lost_search_frames, 1, 100000, "frames LOST (last box kept, re-detection) before SEARCHING");
     v("search_full_stride", search_full_stride, 1, 1000, "not tracking: search the whole frame every this many frames");
     v("search_local_scale", search_local_scale, 1.0, 10.0, "LOST: the face search window, the last box grown by this");
+    v("camera_queue", camera_queue, 1, 1000, "CAMERA frames queued at most (more are skipped, counted in HEALTH.dropped)");
+    v("opencv_threads", opencv_threads, -1, 64, "cv::setNumThreads of the stage's process (0: no worker threads, -1: OpenCV's default)");
     v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
     v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");

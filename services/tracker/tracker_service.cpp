@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <opencv2/core.hpp>
+
 #include "bus_node.hpp"
 #include "image_codec.hpp"
+#include "seq_gaps.hpp"
 #include "tracker_service.hpp"
 #include "user_tracker.hpp"
 
@@ -49,13 +52,24 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
     explicit State(const gpilot::TrackerParams& p) : tracker(p) {}
     gpilot::UserTracker tracker;
     cv::Mat frame;
+    gpilot::SeqGaps gaps;
   };
-  auto state = std::make_shared<State>(config.section<gpilot::TrackerParams>("tracker"));
+  const auto params = config.section<gpilot::TrackerParams>("tracker");
+  // OpenCV's own threads (the cascade's parallel_for, resize) add nothing on a machine whose cores the other
+  // stages use, and the stage's cost is budgeted on one core (face.scan_slice_pixels).
+  cv::setNumThreads(params.opencv_threads);
+  auto state = std::make_shared<State>(params);
   auto& tracker = state->tracker;
   auto& frame = state->frame;
+  auto& gaps = state->gaps;
   const auto limits = config.section<gpilot::ImageLimits>("image");
 
-  node.subscribe<gpilot::image_t>("CAMERA", [&node, &tracker, &frame, limits](const gpilot::image_t& msg, int64_t) {
+  // At most camera_queue frames wait (LCM drops the frames that arrive while the queue is full): a stage that
+  // falls behind skips frames instead of answering later and later. Each skipped frame (a seq gap) is counted
+  // in HEALTH.dropped; the frames it did process are those it published a USER_TRACK of (gpilot-replay gives a
+  // replay exactly those).
+  node.subscribe<gpilot::image_t>("CAMERA", [&node, &tracker, &frame, &gaps, limits](const gpilot::image_t& msg, int64_t) {
+    for (int64_t n = gaps.skipped_before(msg.seq); n > 0; --n) node.drop();
     const std::string why = gpilot::image_to_mat(msg, frame, limits);
     if (!why.empty()) {
       node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + why);
@@ -74,7 +88,7 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
                    out.status == gpilot::TrackStatus::kTracking ? "tracking"
                    : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
                                                                 : "searching for a face");
-  });
+  }, params.camera_queue);
 
   node.subscribe<gpilot::tracker_init_t>("TRACKER_INIT", [&node, &tracker](const gpilot::tracker_init_t& msg, int64_t) {
     if (msg.command == gpilot::tracker_init_t::COMMAND_RESET) {

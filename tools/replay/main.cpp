@@ -1,7 +1,9 @@
 // gpilot-replay: runs one stage (or a chain) over an LCM log, faster than real time, through the very code
 // the service runs (the stage's start_*_service on a BusNode over memq://), and writes a new log with the
-// original inputs and the new outputs. --check compares the new outputs with the recorded ones.
+// original inputs and the new outputs. --check compares the new outputs with the recorded ones. A stage is
+// given the frames the live stage processed, not those it skipped falling behind (ReplayPacing).
 // This is how a bug seen in the field is reproduced on a desk.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -14,6 +16,7 @@
 
 #include "decide/decide_service.hpp"
 #include "flight_replay.hpp"
+#include "replay_pacing.hpp"
 #include "hands/hands_service.hpp"
 #include "service_cli.hpp"
 #include "tracker/tracker_service.hpp"
@@ -24,12 +27,13 @@ namespace {
 struct StageEntry {
   std::function<std::shared_ptr<void>(const Config&, BusNode&)> start;
   std::vector<std::string> inputs, outputs;
+  std::vector<std::pair<std::string, std::string>> paced = {};  //!< (input, output): see ReplayPacing
 };
 
 const std::map<std::string, StageEntry>& stages() {
   static const std::map<std::string, StageEntry> table = {
-      {"tracker", {start_tracker_service, {"CAMERA", "TRACKER_INIT"}, {"USER_TRACK"}}},
-      {"hands", {start_hands_service, {"CAMERA", "USER_TRACK"}, {"HAND_OBS"}}},
+      {"tracker", {start_tracker_service, {"CAMERA", "TRACKER_INIT"}, {"USER_TRACK"}, {{"CAMERA", "USER_TRACK"}}}},
+      {"hands", {start_hands_service, {"CAMERA", "USER_TRACK"}, {"HAND_OBS"}, {{"CAMERA", "HAND_OBS"}}}},
       {"decide", {start_decide_service, {"HAND_OBS"}, {"GESTURE_CMD"}}},
       // Started apart (it needs the log's clock): see FlightReplay.
       {"flight", {nullptr, {"GESTURE_CMD", "USER_TRACK", "VEHICLE_STATE", "FLIGHT_CONTROL"}, {"FLIGHT_SETPOINT"}}},
@@ -64,7 +68,7 @@ int main(int argc, char** argv) {
                  "FLIGHT_SETPOINT: the bridge's decisions at each recorded setpoint's time; the vehicle's states come\n"
                  "from the log), or a chain such as tracker,hands,decide.");
   std::string in_path, out_path, stage_arg;
-  bool check = false, inputs_only = false;
+  bool check = false, inputs_only = false, all_frames = false;
   double from_s = 0, to_s = 0;
   cli.app().add_option("log", in_path, "the recorded LCM log")->required();
   cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide, flight")->required();
@@ -73,6 +77,9 @@ int main(int argc, char** argv) {
   cli.app().add_option("--from", from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
   cli.app().add_option("--to", to_s, "stop this many seconds after the log's first event (0 = the end)")->check(CLI::NonNegativeNumber);
   cli.app().add_flag("--inputs-only", inputs_only, "the new log holds only the stages' inputs and outputs (small logs)");
+  cli.app().add_flag("--all-frames", all_frames,
+                     "give the stages every recorded frame (default: only those the live stages processed, i.e. whose\n"
+                     "USER_TRACK / HAND_OBS the log records; a log without those outputs gives every frame)");
   return cli.run(argc, argv, [&](const Config& config) -> int {
     std::vector<std::string> chain;
     std::stringstream ss(stage_arg);
@@ -87,6 +94,21 @@ int main(int argc, char** argv) {
       for (const auto& i : stages().at(s).inputs)
         if (!outputs.count(i)) inputs.insert(i);
 
+    // The frames the live stages processed (ReplayPacing): a first pass over the log records their outputs' seqs.
+    ReplayPacing pacing;
+    if (!all_frames)
+      for (const auto& s : chain)
+        for (const auto& [input, output] : stages().at(s).paced) pacing.add_rule(input, output);
+    {
+      const std::set<std::string> paced_outputs = pacing.output_channels();
+      lcm::LogFile scan(in_path, "r");
+      if (!scan.good()) throw std::runtime_error(in_path + ": cannot open log");
+      for (const lcm::LogEvent* ev = scan.readNextEvent(); ev && !paced_outputs.empty(); ev = scan.readNextEvent())
+        if (paced_outputs.count(ev->channel)) {
+          const auto* p = static_cast<const uint8_t*>(ev->data);
+          pacing.recorded(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
+        }
+    }
     lcm::LogFile in(in_path, "r");
     if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
     std::unique_ptr<lcm::LogFile> out;
@@ -149,13 +171,15 @@ int main(int argc, char** argv) {
       const bool input = inputs.count(ev->channel) > 0;
       if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       if (!input) continue;
+      if (!pacing.give(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))))) continue;
       ++n_inputs;
       node.publish_raw(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       node.drain();
       if (n_inputs % 200 == 0) std::fprintf(stderr, "\rgpilot-replay: %lld input messages", static_cast<long long>(n_inputs));
     }
-    std::fprintf(stderr, "\rgpilot-replay: %lld events, %lld inputs to %s, rejected %lld\n", static_cast<long long>(n_events),
-                 static_cast<long long>(n_inputs), stage_arg.c_str(), static_cast<long long>(node.stats().rejected_count()));
+    std::fprintf(stderr, "\rgpilot-replay: %lld events, %lld inputs to %s, rejected %lld, %lld frames the live stage skipped\n",
+                 static_cast<long long>(n_events), static_cast<long long>(n_inputs), stage_arg.c_str(),
+                 static_cast<long long>(node.stats().rejected_count()), static_cast<long long>(pacing.held_back()));
     int differences = 0;
     for (const auto& o : outputs) {
       const auto& a = produced[o];

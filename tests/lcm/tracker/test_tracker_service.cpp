@@ -2,11 +2,17 @@
 // then real frames on CAMERA; one USER_TRACK per good frame with its seq and utime, boxes identical to the
 // core run in-process over the same frames; malformed CAMERA messages rejected (HEALTH) without a
 // USER_TRACK and without advancing the track. After a reset, a frame with a face: the track it starts carries
-// the face box the core finds.
+// the face box the core finds. Under load (both cores busy) the stage skips frames, counts them, and its
+// replay over the run's log agrees bit for bit.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <cstdio>
 #include <map>
+#include <thread>
 #include <vector>
+
+#include <lcm/lcm-cpp.hpp>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -120,13 +126,20 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   ASSERT_FALSE(a.empty());
   cv::Mat face_frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
   cv::resize(a, face_frame(cv::Rect(140, 0, 360, 360)), cv::Size(360, 360), 0, 0, cv::INTER_AREA);
-  bus.publish("CAMERA", mat_to_image(face_frame, t0 + 5000 + 33000 * 16, 16));
-  ASSERT_TRUE(spin_until([&] { return tracks.count(16) > 0; }, 10000)) << "no USER_TRACK for the face frame";
-  // THEN the face search starts a track, and USER_TRACK carries the face the core finds in that frame.
+  // (again and again: the face search spreads a scan of the frame over frames, face.scan_slice_pixels)
   core.reset();
-  const TrackOutput want = core.process(face_frame);
+  TrackOutput want;
+  int64_t seq = 16;
+  for (; seq < 16 + FaceDetector(TrackerParams{}).scan_tiles(face_frame.size()); ++seq) {
+    bus.publish("CAMERA", mat_to_image(face_frame, wall_utime(), seq));
+    ASSERT_TRUE(spin_until([&] { return tracks.count(seq) > 0; }, 10000)) << "no USER_TRACK for the face frame " << seq;
+    want = core.process(face_frame);
+    EXPECT_EQ(tracks[seq].status, static_cast<int8_t>(want.status)) << "seq " << seq;
+    if (want.status == TrackStatus::kTracking) break;
+  }
+  // THEN the face search starts a track, and USER_TRACK carries the face the core finds in that frame.
   ASSERT_TRUE(want.face.has_value());
-  const user_track_t& got = tracks[16];
+  const user_track_t& got = tracks[seq];
   EXPECT_EQ(got.status, user_track_t::STATUS_TRACKING);
   EXPECT_EQ(got.init_source, user_track_t::INIT_FACE);
   EXPECT_EQ(got.track_id, 2);
@@ -135,4 +148,122 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   EXPECT_EQ(got.face_box[2], static_cast<float>(want.face->width));
   EXPECT_EQ(got.face_box[3], static_cast<float>(want.face->height));
   EXPECT_TRUE(cv::Rect2d(got.face_box[0], got.face_box[1], got.face_box[2], got.face_box[3]).contains({298, 81}));
+}
+
+// Under load the live stage and its replay agree bit for bit. Both cores are kept busy beside gpilot-tracker
+// while all 53 frames of cf_tracking_sample are sent at once: the stage queues at most tracker.camera_queue
+// frames and LCM drops those that arrive while the queue is full, as many as the load makes it (no count is
+// asserted: that is timing). Everything on the bus is logged; gpilot-replay --check over that log gives the stage exactly the
+// frames it processed (those with a USER_TRACK) and must find no difference, and HEALTH.dropped counts the
+// skipped frames.
+TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
+  std::vector<cv::Mat> frames;
+  {
+    auto src = open_otb(std::string(GPILOT_SOURCE_DIR) + "/data/tracking/cf_tracking_sample");
+    EvalFrame f;
+    while (src->next(f)) frames.push_back(f.image.clone());
+  }
+  ASSERT_EQ(frames.size(), 53u);
+  test::ChildProcess service({std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl});
+  ASSERT_GT(service.pid(), 0) << "cannot start gpilot-tracker";
+
+  const std::string log_path = ::testing::TempDir() + "gpilot_tracker_load.lcmlog";
+  std::remove(log_path.c_str());
+  std::map<int64_t, user_track_t> tracks;
+  health_t last_health{};
+  bool heard = false;
+  {
+    lcm::LogFile log(log_path, "w");
+    ASSERT_TRUE(log.good());
+    int64_t eventnum = 0;
+    BusNode bus("test-tracker-load", kUrl);
+    bus.subscribe_raw("CAMERA|TRACKER_INIT|USER_TRACK", [&](const std::string& ch, const void* data, size_t size, int64_t t) {
+      lcm::LogEvent ev{};
+      ev.eventnum = eventnum++;
+      ev.timestamp = t;
+      ev.channel = ch;
+      ev.datalen = static_cast<int32_t>(size);
+      ev.data = const_cast<void*>(data);
+      log.writeEvent(&ev);
+    });
+    bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
+    bus.subscribe<health_t>("HEALTH", [&](const health_t& m, int64_t) {
+      if (m.name != "gpilot-tracker") return;
+      last_health = m;
+      heard = true;
+    });
+    auto spin_until = [&](const std::function<bool()>& done, int max_ms) {
+      for (int waited = 0; waited < max_ms && !done(); waited += 20) bus.spin_once(20);
+      return done();
+    };
+    ASSERT_TRUE(spin_until([&] { return heard; }, 10000)) << "no HEALTH from gpilot-tracker";
+
+    // GIVEN both cores busy
+    std::atomic<bool> stop{false};
+    std::vector<std::thread> busy;
+    for (int i = 0; i < 2; ++i)
+      busy.emplace_back([&stop] {
+        volatile double x = 1.0;
+        while (!stop.load(std::memory_order_relaxed)) x = x * 1.0000001 + 1e-9;
+      });
+    // WHEN a manual box, then every frame at once
+    tracker_init_t req{};
+    req.utime = wall_utime();
+    req.seq = 1;
+    req.command = tracker_init_t::COMMAND_SET_BOX;
+    req.box[0] = 261;
+    req.box[1] = 48;
+    req.box[2] = 39;
+    req.box[3] = 65;
+    req.source = "test_lcm_tracker";
+    bus.publish("TRACKER_INIT", req);
+    bus.spin_once(200);
+    for (size_t i = 0; i < frames.size(); ++i) {
+      // JPEG, as the camera of ./deploy/run: 53 raw frames at once would overflow the socket's buffer.
+      bus.publish("CAMERA", mat_to_image(frames[i], wall_utime(), static_cast<int64_t>(i), image_t::PIXEL_FORMAT_JPEG));
+      bus.spin_once(0);
+    }
+    // Until the stage has answered all it will (no new USER_TRACK for a second; LCM drops the frames that
+    // arrive while the queue is full, so which ones it answers is the load's doing).
+    for (size_t n = 0; n != tracks.size() || n == 0;) {
+      n = tracks.size();
+      spin_until([&] { return tracks.size() > n; }, 1000);
+      if (n == 0 && tracks.empty()) break;
+    }
+    stop = true;
+    for (auto& t : busy) t.join();
+    ASSERT_FALSE(tracks.empty()) << "no USER_TRACK at all";
+    spin_until([&] { return last_health.messages_out >= static_cast<int64_t>(tracks.size()); }, 5000);
+  }
+  // Skipped: the frames between the first and the last it processed that it never saw.
+  const int64_t skipped = tracks.rbegin()->first - tracks.begin()->first + 1 - static_cast<int64_t>(tracks.size());
+  std::printf("under load: %zu of 53 frames processed (seq %lld..%lld), %lld skipped between; HEALTH.dropped %lld\n",
+              tracks.size(), static_cast<long long>(tracks.begin()->first), static_cast<long long>(tracks.rbegin()->first),
+              static_cast<long long>(skipped), static_cast<long long>(last_health.dropped));
+  // THEN HEALTH counts the skipped frames (the first frame finds the queue empty)
+  EXPECT_EQ(tracks.count(0), 1u);
+  EXPECT_EQ(last_health.dropped, skipped);
+  // AND the replay of the stage over the log, given the frames the live stage processed, agrees bit for bit.
+  test::ChildProcess replay({std::string(GPILOT_BIN_DIR) + "/gpilot-replay", log_path, "--stage", "tracker", "--check"});
+  const int status = replay.wait();
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "gpilot-replay --check found differences (status " << status << ")";
+  // Given every frame instead (as before), the replay would follow another track.
+  if (skipped > 0) {
+    test::ChildProcess all({std::string(GPILOT_BIN_DIR) + "/gpilot-replay", log_path, "--stage", "tracker", "--check", "--all-frames"});
+    const int st = all.wait();
+    EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 1) << "--all-frames found no difference with frames skipped";
+  }
+  // The core in-process over the same frames says the same.
+  UserTracker core{TrackerParams{}};
+  core.set_box(cv::Rect2d(261, 48, 39, 65));
+  for (const auto& [seq, got] : tracks) {
+    // The frame as the stage saw it: through the JPEG codec.
+    cv::Mat seen;
+    ASSERT_EQ(image_to_mat(mat_to_image(frames[static_cast<size_t>(seq)], 0, seq, image_t::PIXEL_FORMAT_JPEG), seen), "");
+    const TrackOutput want = core.process(seen);
+    EXPECT_EQ(got.box[0], static_cast<float>(want.box.x)) << "seq " << seq;
+    EXPECT_EQ(got.box[1], static_cast<float>(want.box.y)) << "seq " << seq;
+    EXPECT_EQ(got.confidence, static_cast<float>(want.confidence)) << "seq " << seq;
+  }
+  std::remove(log_path.c_str());
 }
