@@ -103,6 +103,11 @@ class BusNode {
     send(channel, msg);
     stats_.published();
   }
+  // The process's own reports (CONFIG at start): sent like any message, not counted as the stage's output.
+  template <class Msg>
+  void publish_report(const std::string& channel, const Msg& msg) {
+    send(channel, msg);
+  }
 
   // Publishes raw bytes (tools and tests that must send malformed data).
   void publish_raw(const std::string& channel, const void* data, size_t size);

@@ -14,4 +14,8 @@ void validate_config(const Config& config);
 // deploy/config/default.yaml: every section and key at its default, with a comment.
 std::string default_config_yaml();
 
+// The same for the values config gives (what a process runs with: published on CONFIG at its start, and
+// read back by gpilot-replay with Config::from_string).
+std::string effective_config_yaml(const Config& config);
+
 }  // namespace gpilot

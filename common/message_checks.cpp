@@ -208,4 +208,10 @@ std::string check_message(const health_t& m) {
                     .reason});
 }
 
+std::string check_message(const config_t& m) {
+  if (m.process.empty()) return "process is empty";
+  if (m.yaml.empty()) return "yaml is empty";
+  return "";
+}
+
 }  // namespace gpilot

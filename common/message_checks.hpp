@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "gpilot/config_t.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
@@ -37,5 +38,6 @@ std::string check_message(const flight_setpoint_t& m);
 std::string check_message(const vehicle_state_t& m);
 std::string check_message(const ground_truth_t& m);
 std::string check_message(const health_t& m);
+std::string check_message(const config_t& m);
 
 }  // namespace gpilot

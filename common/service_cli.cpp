@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <unistd.h>
 
 #include "config_schema.hpp"
 
@@ -44,6 +45,13 @@ int ServiceCli::run(int argc, char** argv, const std::function<int(const Config&
 int ServiceCli::run_node(int argc, char** argv, const std::function<int(const Config&, BusNode&)>& body) {
   return run(argc, argv, [&](const Config& config) {
     BusNode node(name_, resolve_lcm_url(lcm_url_), config.section<BusParams>("bus"));
+    // What this process runs with, once, so that a log of the run replays with it (gpilot-replay).
+    config_t c{};
+    c.utime = node.now();
+    c.process = name_;
+    c.pid = static_cast<int32_t>(getpid());
+    c.yaml = effective_config_yaml(config);
+    node.publish_report("CONFIG", c);
     return body(config, node);
   });
 }

@@ -1,6 +1,7 @@
 // The command line every gpilot process shares: --config, --set, --lcm-url, --help with the stage's
 // description. Config is loaded and the whole file validated before the bus is touched; a bad config
-// exits with status 2, a bus that cannot start with 3, any other error with 1.
+// exits with status 2, a bus that cannot start with 3, any other error with 1. A process with a bus
+// publishes its effective config on CONFIG when it starts.
 #pragma once
 
 #include <functional>
@@ -27,6 +28,8 @@ class ServiceCli {
 
   const std::string& name() const { return name_; }
   const std::string& lcm_url() const { return lcm_url_; }
+  // Whether the command line chose a config (--config or --set), over e.g. one recorded in a log.
+  bool config_given() const { return !config_file_.empty() || !sets_.empty(); }
 
  private:
   std::string name_;

@@ -75,4 +75,11 @@ const std::vector<WirePart>& wire_layout<image_t>() {
   return l;
 }
 
+// int64 utime, int64 seq, string process, int32 pid, string yaml
+template <>
+const std::vector<WirePart>& wire_layout<config_t>() {
+  static const std::vector<WirePart> l{{P::kBytes, 16}, {P::kString}, {P::kBytes, 4}, {P::kString}};
+  return l;
+}
+
 }  // namespace gpilot

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gpilot/config_t.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/health_t.hpp"
 #include "gpilot/image_t.hpp"
@@ -40,6 +41,8 @@ template <>
 const std::vector<WirePart>& wire_layout<health_t>();
 template <>
 const std::vector<WirePart>& wire_layout<image_t>();
+template <>
+const std::vector<WirePart>& wire_layout<config_t>();
 
 template <class Msg>
 std::string check_wire_lengths(const void* data, size_t size) {

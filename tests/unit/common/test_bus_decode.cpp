@@ -169,11 +169,15 @@ TEST(WireLengths, EachLayoutWalksItsTypesEncodingExactly) {
   image_t im{};
   im.size = 7;
   im.data.assign(7, 9);
+  config_t cf{};
+  cf.process = "gpilot-decide";
+  cf.yaml = "decide:\n  lambda4: 0.25\n";
   // THEN each layout ends exactly at the end of its encoding, and one byte less is noticed
   EXPECT_EQ(check_wire_lengths<flight_control_t>(encoded(c).data(), encoded(c).size()), "");
   EXPECT_EQ(check_wire_lengths<tracker_init_t>(encoded(t).data(), encoded(t).size()), "");
   EXPECT_EQ(check_wire_lengths<health_t>(encoded(h).data(), encoded(h).size()), "");
   EXPECT_EQ(check_wire_lengths<image_t>(encoded(im).data(), encoded(im).size()), "");
+  EXPECT_EQ(check_wire_lengths<config_t>(encoded(cf).data(), encoded(cf).size()), "");
   const auto hb = encoded(h);
   EXPECT_EQ(check_wire_lengths<health_t>(hb.data(), hb.size() - 1), "truncated");
   // AND a type without strings or arrays has no layout to check
@@ -203,7 +207,7 @@ TEST(WireLengths, AnImageWhoseSizeSaysTwoGigabytesIsRejectedBeforeAnythingIsAllo
 }
 
 TEST(WireLengths, EveryLcmtypeWithAStringOrAnArrayHasALayout) {
-  // The .lcm files say which types have variable-length fields: exactly the four with a layout.
+  // The .lcm files say which types have variable-length fields: exactly the five with a layout.
   std::set<std::string> variable;
   for (const auto& f : std::filesystem::directory_iterator(std::string(GPILOT_SOURCE_DIR) + "/lcmtypes")) {
     if (f.path().extension() != ".lcm") continue;
@@ -213,6 +217,6 @@ TEST(WireLengths, EveryLcmtypeWithAStringOrAnArrayHasALayout) {
     while (std::getline(in, line))
       if (std::regex_search(line, field)) variable.insert(f.path().stem().string());
   }
-  EXPECT_EQ(variable, (std::set<std::string>{"flight_control_t", "health_t", "image_t", "tracker_init_t"}))
+  EXPECT_EQ(variable, (std::set<std::string>{"config_t", "flight_control_t", "health_t", "image_t", "tracker_init_t"}))
       << "a type with a string or a variable array needs its layout in common/wire_lengths.cpp";
 }
