@@ -51,10 +51,8 @@ TEST(CaptureLcm, SyntheticWorldInRealTimeWithTruthAndClosedLoop) {
   BusNode node("test", kUrl);
   std::map<int64_t, int64_t> frame_utime, truth_utime;
   std::map<int64_t, float> truth_camera_north;
-  std::vector<int64_t> arrivals;
   node.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) {
     frame_utime[m.seq] = m.utime;
-    arrivals.push_back(monotonic_utime());
     EXPECT_EQ(m.width, 640);
     EXPECT_EQ(m.height, 480);
   });
@@ -76,12 +74,19 @@ TEST(CaptureLcm, SyntheticWorldInRealTimeWithTruthAndClosedLoop) {
       next_state = monotonic_utime() + 100'000;
     }
   });
-  // THEN it exits 0 after 2 s of frames: 50 at 25 fps, paced in real time (about 2 s from first to last)
+  // THEN it exits 0 after 2 s of frames: 50 at 25 fps (seq 0..49; a datagram lost on a loaded machine is allowed)
   EXPECT_EQ(status, 0);
   EXPECT_GE(frame_utime.size(), 48u);
   EXPECT_LE(frame_utime.size(), 50u);
-  ASSERT_GE(arrivals.size(), 2u);
-  EXPECT_NEAR((arrivals.back() - arrivals.front()) / 1e6, 49 / 25.0, 0.4);
+  ASSERT_GE(frame_utime.size(), 2u);
+  EXPECT_GE(frame_utime.begin()->first, 0);
+  EXPECT_LE(frame_utime.rbegin()->first, 49);
+  // paced in real time: each frame is stamped with the capture's bus clock when its tick comes, so its own
+  // stamps are 1/25 s apart on average (not the test's reading times, which depend on how busy the machine is)
+  const auto& [first_seq, first_utime] = *frame_utime.begin();
+  const auto& [last_seq, last_utime] = *frame_utime.rbegin();
+  ASSERT_GT(last_seq, first_seq);
+  EXPECT_NEAR(static_cast<double>(last_utime - first_utime) / static_cast<double>(last_seq - first_seq), 40000.0, 4000.0);
   // every truth has its frame's utime; and the camera flies with the vehicle
   int matched = 0;
   for (const auto& [seq, utime] : truth_utime)

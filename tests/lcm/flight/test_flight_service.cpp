@@ -241,6 +241,12 @@ TEST(FlightService, MavlinkBackendTalksToAnAutopilotOnLoopback) {
       bus.pump(0.005);
     }
   };
+  // Runs until pred() (timeout_s only ends a failing run); returns pred().
+  auto run_until = [&](const std::function<bool()>& pred, double timeout_s, const std::function<void()>& each = {}) {
+    const int64_t end = monotonic_utime() + seconds_to_utime(timeout_s);
+    while (!pred() && monotonic_utime() < end) run(0.005, each);
+    return pred();
+  };
   // Our HEARTBEAT arrives (sent at start and at 1 Hz).
   run(1.5);
   ASSERT_GE(ap.count(mavlink::Heartbeat::kId), 1);
@@ -308,23 +314,27 @@ TEST(FlightService, MavlinkBackendTalksToAnAutopilotOnLoopback) {
   // OFFBOARD is asked for
   loss_t = 0.5f;
   ASSERT_TRUE(ctl("engage"));
-  run(0.3, answer_all);
-  const int at_engage = ap.count(mavlink::SetPositionTargetLocalNed::kId);
-  EXPECT_GT(at_engage, 0);
-  run(1.0, answer_all);
-  const int in_one_second = ap.count(mavlink::SetPositionTargetLocalNed::kId) - at_engage;
-  EXPECT_GE(in_one_second, 20);
+  constexpr int kSetpoints = 26;
+  ASSERT_TRUE(run_until([&] { return ap.count(mavlink::SetPositionTargetLocalNed::kId) >= kSetpoints; }, 10.0, answer_all));
+  std::vector<mavlink::SetPositionTargetLocalNed> sent;
+  for (const auto& f : ap.frames)
+    if (f.msgid == mavlink::SetPositionTargetLocalNed::kId) sent.push_back(mavlink::unpack_set_position_target_local_ned(f.payload));
+  ASSERT_GE(sent.size(), static_cast<size_t>(kSetpoints));
+  // The rate by gpilot-flight's own clock (each setpoint's time_boot_ms), not by when this test read them:
+  // 25 periods at flight.setpoint_rate_hz 50 take 500 ms; at 20 Hz (PX4 leaves offboard below 2) 1250 ms.
+  for (size_t i = 1; i < sent.size(); ++i) EXPECT_GE(sent[i].time_boot_ms, sent[i - 1].time_boot_ms) << i;
+  const uint32_t span_ms = sent[kSetpoints - 1].time_boot_ms - sent[0].time_boot_ms;
+  EXPECT_GT(span_ms, 0u);
+  EXPECT_LE(span_ms, 1250u);
   bool offboard = false;
   for (const auto& f : ap.frames)
     if (f.msgid == mavlink::CommandLong::kId && mavlink::unpack_command_long(f.payload).command == 176) offboard = true;
   EXPECT_TRUE(offboard);
-  const auto& last = ap.frames.back();
-  if (last.msgid == mavlink::SetPositionTargetLocalNed::kId) {
-    const auto m = mavlink::unpack_set_position_target_local_ned(last.payload);
-    EXPECT_EQ(m.coordinate_frame, 8);
-    EXPECT_EQ(m.type_mask, 1479);
-    EXPECT_EQ(m.vx, 0.0f);
-  }
+  // velocity-only setpoints in LOCAL_NED, zero without a gesture
+  const auto& m = sent.back();
+  EXPECT_EQ(m.coordinate_frame, 8);
+  EXPECT_EQ(m.type_mask, 1479);
+  EXPECT_EQ(m.vx, 0.0f);
 
   // disengage: the stream stops
   ASSERT_TRUE(ctl("disengage"));
