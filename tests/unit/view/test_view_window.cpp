@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <poll.h>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,6 +50,31 @@ pid_t spawn(const std::vector<std::string>& argv, const std::string& log) {
   _exit(127);
 }
 
+// Starts Xvfb on a display it chooses itself (-displayfd: the first free one, written to a pipe once the server
+// accepts connections), so parallel tests never pick the same display. Returns the display (":N"), or "" when
+// Xvfb said nothing within 10 s.
+std::string start_xvfb(const std::string& log, pid_t& pid) {
+  int fds[2];
+  if (pipe(fds) != 0) return "";
+  pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    if (!freopen(log.c_str(), "w", stderr)) _exit(126);
+    if (!freopen("/dev/null", "w", stdout)) _exit(126);
+    const std::string fd = std::to_string(fds[1]);
+    execl("/usr/bin/Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "800x600x24", "-nolisten", "tcp",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  std::string number;
+  pollfd p{fds[0], POLLIN, 0};
+  char c = 0;
+  while (poll(&p, 1, 10000) > 0 && read(fds[0], &c, 1) == 1 && c != '\n') number += c;
+  close(fds[0]);
+  return number.empty() ? "" : ":" + number;
+}
+
 void stop(pid_t pid) {
   if (pid <= 0) return;
   kill(pid, SIGTERM);
@@ -59,12 +85,10 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   if (access("/usr/bin/Xvfb", X_OK) != 0 || access("/usr/bin/xdotool", X_OK) != 0)
     GTEST_SKIP() << "Xvfb or xdotool not installed (deploy/setup installs them)";
   const test::ScratchDir dir("gpilot_view_window");
-  const std::string display = ":" + std::to_string(200 + ::getpid() % 700);
-  const pid_t xvfb = spawn({"/usr/bin/Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"},
-                           dir / "xvfb.txt");
-  const std::string socket = "/tmp/.X11-unix/X" + display.substr(1);
-  for (int i = 0; i < 100 && !fs::exists(socket); ++i) usleep(100000);
-  ASSERT_TRUE(fs::exists(socket)) << "Xvfb did not start on " << display;
+  pid_t xvfb = -1;
+  const std::string display = start_xvfb(dir / "xvfb.txt", xvfb);
+  if (display.empty()) stop(xvfb);
+  ASSERT_FALSE(display.empty()) << "Xvfb did not start (see its output in " << dir / "xvfb.txt" << ")";
   setenv("DISPLAY", display.c_str(), 1);
 
   lcm::LCM lc(kDefaultLcmUrl);
@@ -79,6 +103,7 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   // GIVEN the window showing frames
   test::SyntheticRun run;
   run.size = cv::Size(320, 240);
+  run.t0 = wall_utime();  // frames stamped now: the bus refuses a utime outside bus.time_window_s of its arrival
   for (int s = 0; s < 20; ++s) {  // more than the viewer's hold (12), so frames are drawn
     const image_t img = test::camera_of(run, s);
     lc.publish("CAMERA", &img);
