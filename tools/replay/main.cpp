@@ -1,7 +1,8 @@
 // gpilot-replay: runs one stage (or a chain) over an LCM log, faster than real time, through the very code
 // the service runs (the stage's start_*_service on a BusNode over memq://), and writes a new log with the
 // original inputs and the new outputs. --check compares the new outputs with the recorded ones. A stage is
-// given the frames the live stage processed, not those it skipped falling behind (ReplayPacing).
+// given the frames the live stage processed, not those it skipped falling behind (ReplayPacing), and the
+// config the live stage published on CONFIG (unless --config or --set say otherwise).
 // This is how a bug seen in the field is reproduced on a desk.
 #include <algorithm>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include "flight_replay.hpp"
 #include "replay_pacing.hpp"
 #include "hands/hands_service.hpp"
+#include "config_schema.hpp"
 #include "service_cli.hpp"
 #include "tracker/tracker_service.hpp"
 
@@ -99,15 +101,37 @@ int main(int argc, char** argv) {
     if (!all_frames)
       for (const auto& s : chain)
         for (const auto& [input, output] : stages().at(s).paced) pacing.add_rule(input, output);
+    // The same pass finds the config each live stage published on CONFIG when it started (the first one of its
+    // process name): a stage replays with its own run's config unless --config or --set chose one.
+    std::map<std::string, std::string> logged_yaml;  // process -> YAML
     {
       const std::set<std::string> paced_outputs = pacing.output_channels();
       lcm::LogFile scan(in_path, "r");
       if (!scan.good()) throw std::runtime_error(in_path + ": cannot open log");
-      for (const lcm::LogEvent* ev = scan.readNextEvent(); ev && !paced_outputs.empty(); ev = scan.readNextEvent())
+      for (const lcm::LogEvent* ev = scan.readNextEvent(); ev; ev = scan.readNextEvent()) {
         if (paced_outputs.count(ev->channel)) {
           const auto* p = static_cast<const uint8_t*>(ev->data);
           pacing.recorded(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
+        } else if (!cli.config_given() && std::strcmp(ev->channel.c_str(), "CONFIG") == 0) {
+          config_t c{};
+          if (c.decode(ev->data, 0, ev->datalen) > 0 && check_message(c).empty()) logged_yaml.emplace(c.process, c.yaml);
         }
+      }
+    }
+    std::map<std::string, Config> stage_config;
+    for (const auto& s : chain) {
+      const auto it = logged_yaml.find("gpilot-" + s);
+      if (it == logged_yaml.end()) {
+        stage_config.emplace(s, config);
+        if (!cli.config_given())
+          std::fprintf(stderr, "gpilot-replay: %s: no CONFIG of gpilot-%s in the log: the built-in defaults (--config to choose)\n",
+                       s.c_str(), s.c_str());
+        continue;
+      }
+      Config logged = Config::from_string(it->second, "the CONFIG of gpilot-" + s + " in " + in_path);
+      validate_config(logged);
+      stage_config.emplace(s, std::move(logged));
+      std::fprintf(stderr, "gpilot-replay: %s runs with the config gpilot-%s published in the log\n", s.c_str(), s.c_str());
     }
     lcm::LogFile in(in_path, "r");
     if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
@@ -132,10 +156,24 @@ int main(int argc, char** argv) {
     int64_t now_ts = 0;
     std::vector<std::shared_ptr<void>> running;
     std::unique_ptr<FlightReplay> flight;
+    bool configs_written = false;
     for (const auto& s : chain) {
-      if (s == "flight") flight = std::make_unique<FlightReplay>(config, node, now_ts);
-      else running.push_back(stages().at(s).start(config, node));
+      if (s == "flight") flight = std::make_unique<FlightReplay>(stage_config.at(s), node, now_ts);
+      else running.push_back(stages().at(s).start(stage_config.at(s), node));
     }
+    // The new log carries the config each replayed stage ran with, as a live run's does.
+    auto write_configs = [&](int64_t ts) {
+      for (const auto& s : chain) {
+        config_t c{};
+        c.utime = ts;
+        c.process = "gpilot-" + s;
+        c.yaml = effective_config_yaml(stage_config.at(s));
+        std::vector<uint8_t> bytes(static_cast<size_t>(c.getEncodedSize()));
+        c.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+        write(ts, "CONFIG", bytes.data(), bytes.size());
+      }
+      configs_written = true;
+    };
     // Messages are compared without their bus signatures: a live run's outputs were signed with its key, at
     // its times; a replay signs nothing (memq:// has no key) and strips the recorded inputs' signatures.
     std::map<std::string, std::vector<std::vector<uint8_t>>> produced, recorded;
@@ -159,6 +197,14 @@ int main(int argc, char** argv) {
       now_ts = ev->timestamp;
       const auto* p = static_cast<const uint8_t*>(ev->data);
       node.set_log_time(now_ts);  // the stages' clock is the log's (BusNode::now)
+      if (!configs_written) write_configs(now_ts);
+      if (ev->channel == "CONFIG") {  // a replayed stage's is replaced by the one it replays with
+        config_t c{};
+        const bool replayed = c.decode(ev->data, 0, ev->datalen) > 0 && c.process.rfind("gpilot-", 0) == 0 &&
+                              std::find(chain.begin(), chain.end(), c.process.substr(7)) != chain.end();
+        if (!replayed && !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+        continue;
+      }
       if (outputs.count(ev->channel)) {
         recorded[ev->channel].push_back(message_of(p, static_cast<size_t>(ev->datalen)));
         if (flight && ev->channel == "FLIGHT_SETPOINT") {
