@@ -120,6 +120,7 @@ void RunAnalyzer::on_command(const gesture_cmd_t& m, int64_t recv_utime) {
   note_seq("GESTURE_CMD", false, "", m.seq);
   if (valid_mode(m.mode)) ++commands_by_mode_[static_cast<size_t>(m.mode)];
   command_mode_by_seq_[m.seq] = m.mode;
+  command_by_seq_[m.seq] = {m.mode, {m.direction[0], m.direction[1]}};
   current_mode_ = m.mode;
   const auto f = frames_by_seq_.find(m.seq);
   if (f == frames_by_seq_.end()) {
@@ -158,6 +159,7 @@ void RunAnalyzer::on_vehicle(const vehicle_state_t& m, int64_t recv_utime) {
 void RunAnalyzer::on_truth(const ground_truth_t& m, int64_t) {
   note_seq("GROUND_TRUTH", true, "", m.seq);
   expected_mode_by_seq_[m.seq] = m.expected_mode;
+  truth_by_seq_[m.seq] = {m.utime, m.gesture, m.expected_mode, {m.expected_direction[0], m.expected_direction[1]}};
   has_person_ = true;
   person_n_ = m.person_position[0];
   person_e_ = m.person_position[1];
@@ -239,6 +241,15 @@ Summary RunAnalyzer::summary() const {
   }
 
   s.gaps = gaps_;
+  std::vector<TruthFrame> truth;
+  std::vector<ScoredCommand> commands;
+  for (const auto& [seq, t] : truth_by_seq_) {
+    truth.push_back(t);
+    const auto c = command_by_seq_.find(seq);
+    commands.push_back(c == command_by_seq_.end() ? ScoredCommand{} : c->second);  // no command: HOVER
+  }
+  if (!truth.empty()) s.reaction = score_commands(truth, commands, ScoreRules{});
+
   s.vehicle_states = static_cast<int64_t>(path_.size());
   for (size_t i = 1; i < path_.size(); ++i)
     s.path_length_m += std::sqrt(std::pow(path_[i].north - path_[i - 1].north, 2) +
@@ -303,6 +314,22 @@ std::string summary_json(const Summary& s, const std::vector<std::pair<std::stri
     j += "]";
   }
   j += "]}\n  },\n";
+  const Score& r = s.reaction;
+  j += "  \"gesture_reaction\": {\"changes\": " + num(static_cast<int64_t>(r.changes)) +
+       ", \"missed\": " + num(static_cast<int64_t>(r.missed)) +
+       ", \"median_s\": " + num(r.reaction_median_s()) + ", \"max_s\": " + num(r.reaction_max_s()) +
+       ", \"median_frames\": " + num(static_cast<int64_t>(r.reaction_median_frames())) +
+       ", \"max_frames\": " + num(static_cast<int64_t>(r.reaction_max_frames())) + ",\n";
+  j += "    \"frames\": " + num(r.frames) + ", \"old_command_frames\": " + num(r.old_frames) +
+       ", \"old_command_percent\": " + num(r.frames ? 100.0 * r.old_frames / r.frames : 0.0) +
+       ", \"wrong_frames\": " + num(r.wrong_frames) + ", \"false_at_rest\": " + num(static_cast<int64_t>(r.false_at_rest)) +
+       ", \"confused\": " + num(static_cast<int64_t>(r.confused)) + ",\n";
+  j += "    \"definition\": " +
+       json_string("every frame with GROUND_TRUTH, no settling skipped (gpilot-eval-decide's scoring): reaction from a "
+                   "true gesture change to the first GESTURE_CMD with the new command; old_command_frames: frames "
+                   "from each change to it; false_at_rest: a motion commanded while the user rests; confused: another "
+                   "motion than the one asked") +
+       "\n  },\n";
   j += "  \"vehicle\": {\"states\": " + num(s.vehicle_states) + ", \"path_length_m\": " + num(s.path_length_m) + "},\n";
   j += "  \"log_gaps\": {\n    \"logger_lost\": " + num(s.logger_lost()) + ",\n    \"channels\": {";
   bool first_gap = true;
@@ -367,6 +394,11 @@ std::string summary_table(const Summary& s) {
   else
     line("gesture accuracy  - (no frame with both GROUND_TRUTH and GESTURE_CMD after settling; %lld truth frames)\n",
          static_cast<long long>(a.truth_frames));
+  const Score& r = s.reaction;
+  line("gesture reaction  median %.2f s, max %.2f s over %d changes (%d missed); old command on %lld of %lld frames "
+       "(%.1f %%); false at rest %d, confused %d\n",
+       r.reaction_median_s(), r.reaction_max_s(), r.changes, r.missed, static_cast<long long>(r.old_frames),
+       static_cast<long long>(r.frames), r.frames ? 100.0 * r.old_frames / r.frames : 0.0, r.false_at_rest, r.confused);
   line("%-18s", "expected \\ decided");
   for (int m = 0; m < kModes; ++m) line(" %8s", mode_name(m));
   t += "\n";

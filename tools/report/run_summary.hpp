@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "decide_eval.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
@@ -81,6 +82,9 @@ struct Summary {
   LatencyStats pipeline_cmd, pipeline_setpoint;   // receipt - CAMERA receipt (both on the logger's clock)
   int64_t unmatched_commands = 0;                 // GESTURE_CMD whose CAMERA frame is not in the log
   Accuracy accuracy;
+  // Every frame counted (no settling skipped): gpilot-eval-decide's scoring of the recorded GESTURE_CMD against
+  // GROUND_TRUTH (reaction to each true change, frames still carrying the old command, false commands).
+  Score reaction;
   int64_t vehicle_states = 0;
   double path_length_m = 0;
   std::map<std::string, ChannelGaps> gaps;  // by channel
@@ -124,6 +128,8 @@ class RunAnalyzer {
   std::map<int64_t, FrameTimes> frames_by_seq_;
   std::map<int64_t, int> command_mode_by_seq_;
   std::map<int64_t, int> expected_mode_by_seq_;
+  std::map<int64_t, TruthFrame> truth_by_seq_;
+  std::map<int64_t, ScoredCommand> command_by_seq_;
   std::array<int64_t, kModes> commands_by_mode_{};
   int64_t commands_ = 0, unmatched_ = 0;
   std::array<int64_t, 3> track_by_status_{};

@@ -93,6 +93,19 @@ TEST_F(RunSummaryTest, AShorterBufferCountsTheLagAsErrors) {
   EXPECT_EQ(s.accuracy.confusion[gesture_cmd_t::MODE_CLOSER][gesture_cmd_t::MODE_FINE], 20);
 }
 
+TEST_F(RunSummaryTest, ReactionScoresEveryFrameJoinedBySeq) {
+  // The synthetic truth says REST throughout (its gesture field is 0): every command that is not HOVER is a
+  // motion asked while resting. Episodes: FINE 31..39, UP 40, FINE 41..80, CLOSER 81..89, FURTHER 90,
+  // CLOSER 91..99: 6 of them, 69 frames; no change to react to.
+  const Summary s = analyse(run, 60);
+  EXPECT_EQ(s.reaction.frames, 100);
+  EXPECT_EQ(s.reaction.changes, 0);
+  EXPECT_EQ(s.reaction.false_at_rest, 6);
+  EXPECT_EQ(s.reaction.false_at_rest_frames, 69);
+  EXPECT_EQ(s.reaction.wrong_frames, 69);
+  EXPECT_NE(summary_json(s, {}).find("\"gesture_reaction\": {\"changes\": 0"), std::string::npos);
+}
+
 TEST_F(RunSummaryTest, NoTruthNoAccuracy) {
   run.with_truth = false;
   const Summary s = analyse(run, 60);
