@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "gpilot/config_t.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
@@ -56,7 +57,8 @@ cv::Mat pattern(int w, int h) {
   return m;
 }
 
-// fuzz_decode.cpp's layout: the type's index (image_t 0, tracker_init_t 1, ... health_t 9), the datagram.
+// fuzz_decode.cpp's layout: the type's index (image_t 0, tracker_init_t 1, ... health_t 9, config_t 10), the
+// datagram.
 Bytes typed(uint8_t type, Bytes datagram) {
   datagram.insert(datagram.begin(), type);
   return datagram;
@@ -103,6 +105,11 @@ void decode_seeds() {
   h.name = "gpilot-tracker";
   h.state_detail = "tracking";
   write("decode", "health", typed(9, encode(h)));
+  config_t cfg{};
+  cfg.process = "gpilot-decide";
+  cfg.pid = 4242;
+  cfg.yaml = "decide:\n  buffer_size: 60\n";
+  write("decode", "config", typed(10, encode(cfg)));
   // The one-datagram kills: a string length of 0 and of -1 (FLIGHT_CONTROL, 33 bytes).
   Bytes fc_bytes = encode(fc);
   const size_t len_at = fc_bytes.size() - fc.source.size() - 1 - 4;
