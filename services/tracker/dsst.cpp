@@ -172,10 +172,77 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
 
   const Sample s = translation_features(frame, pos_, scale_);
   learn_translation(s, true);
+  colour_ = p_.colour_weight > 0 && frame.channels() == 3;
+  if (colour_) learn_colour(s, true);
   scale_features(frame, pos_, scale_);
   learn_scale(true, mid);
   have_detection_ = false;
   initialized_ = true;
+}
+
+namespace {
+constexpr int kColourBins = 32 * 32 * 32;
+inline int colour_bin(const cv::Vec3b& p) { return (p[0] >> 3) * 1024 + (p[1] >> 3) * 32 + (p[2] >> 3); }
+}  // namespace
+
+// Where the target is in the translation sample patch_, in patch pixels (its centre at the estimate pos_).
+cv::Rect2d Dsst::target_in_patch(const Sample& s) const {
+  const cv::Point2d c((pos_.x - s.centre.x) / s.frame_per_model.x, (pos_.y - s.centre.y) / s.frame_per_model.y);
+  const cv::Size2d sz(base_size_.width * scale_ / s.frame_per_model.x, base_size_.height * scale_ / s.frame_per_model.y);
+  return cv::Rect2d(c.x - sz.width / 2, c.y - sz.height / 2, sz.width, sz.height);
+}
+
+// Foreground: the target box shrunk by a tenth each side (Staple's inner region, less background at its
+// corners); background: the window outside the whole target box.
+void Dsst::learn_colour(const Sample& s, bool first) {
+  const cv::Rect2d t = target_in_patch(s);
+  const cv::Rect2d inner(t.x + 0.1 * t.width, t.y + 0.1 * t.height, 0.8 * t.width, 0.8 * t.height);
+  hist_tmp_fg_.assign(kColourBins, 0.0f);
+  hist_tmp_bg_.assign(kColourBins, 0.0f);
+  double nf = 0, nb = 0;
+  for (int y = 0; y < patch_.rows; ++y) {
+    const cv::Vec3b* row = patch_.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < patch_.cols; ++x) {
+      const cv::Point2d c(x + 0.5, y + 0.5);
+      if (inner.contains(c)) {
+        hist_tmp_fg_[static_cast<size_t>(colour_bin(row[x]))] += 1;
+        ++nf;
+      } else if (!t.contains(c)) {
+        hist_tmp_bg_[static_cast<size_t>(colour_bin(row[x]))] += 1;
+        ++nb;
+      }
+    }
+  }
+  if (nf == 0 || nb == 0) return;
+  const float rate = first ? 1.0f : static_cast<float>(p_.colour_learning_rate);
+  if (first) {
+    fg_hist_.assign(kColourBins, 0.0f);
+    bg_hist_.assign(kColourBins, 0.0f);
+  }
+  for (size_t i = 0; i < static_cast<size_t>(kColourBins); ++i) {
+    fg_hist_[i] = (1 - rate) * fg_hist_[i] + rate * static_cast<float>(hist_tmp_fg_[i] / nf);
+    bg_hist_[i] = (1 - rate) * bg_hist_[i] + rate * static_cast<float>(hist_tmp_bg_[i] / nb);
+  }
+}
+
+// Per pixel P(target | colour) = fg / (fg + bg); per cell of the window, its mean over a target-sized box
+// centred there (the correlation response's coordinates: the label peaks at the target's cell).
+void Dsst::colour_response(const Sample& s) {
+  likelihood_.create(patch_.size(), CV_32F);
+  for (int y = 0; y < patch_.rows; ++y) {
+    const cv::Vec3b* row = patch_.ptr<cv::Vec3b>(y);
+    float* out = likelihood_.ptr<float>(y);
+    for (int x = 0; x < patch_.cols; ++x) {
+      const size_t b = static_cast<size_t>(colour_bin(row[x]));
+      const float f = fg_hist_[b], g = bg_hist_[b];
+      out[x] = f + g > 0 ? f / (f + g) : 0.0f;
+    }
+  }
+  cv::resize(likelihood_, colour_cells_, cells_, 0, 0, cv::INTER_AREA);
+  const cv::Rect2d t = target_in_patch(s);
+  const int cell = p_.cell_size;
+  const cv::Size k(std::max(1, static_cast<int>(std::lround(t.width / cell))), std::max(1, static_cast<int>(std::lround(t.height / cell))));
+  cv::boxFilter(colour_cells_, colour_resp_, CV_32F, k, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
 }
 
 Dsst::Sample Dsst::translation_features(const cv::Mat& frame, cv::Point2d pos, double scale) {
@@ -300,10 +367,12 @@ void Dsst::learn(const cv::Mat& frame) {
   if (p_.reuse_detection_samples && have_detection_) {
     // The target sits at the estimate inside the detection samples: labels centred there.
     learn_translation(detection_sample_, false);
+    if (colour_) learn_colour(detection_sample_, false);
     learn_scale(false, detection_scale_index_);
   } else {
     const Sample t = translation_features(frame, pos_, scale_);
     learn_translation(t, false);
+    if (colour_) learn_colour(t, false);
     scale_features(frame, pos_, scale_);
     learn_scale(false, (p_.number_of_scales - 1) / 2);
   }
@@ -367,8 +436,21 @@ DsstEstimate Dsst::track(const cv::Mat& frame) {
     const double sd = std::sqrt(std::max(sum2 / count - mean * mean, 0.0));
     psr_ = std::max(0.0, (peak_value - mean) / std::max(sd, 1e-9));
   }
-  pos_.x = std::clamp(s.centre.x + (px + 0.5) * cell * s.frame_per_model.x, 0.0, frame.cols - 1e-3);
-  pos_.y = std::clamp(s.centre.y + (py + 0.5) * cell * s.frame_per_model.y, 0.0, frame.rows - 1e-3);
+  double qx = px, qy = py;
+  if (colour_) {
+    // Staple's merge; the position is the merged response's peak, the confidence (PSR) stays the filter's.
+    colour_response(s);
+    const float a = static_cast<float>(p_.colour_weight);
+    cv::addWeighted(resp_, 1.0f - a, colour_resp_, a, 0.0, merged_);
+    cv::Point m;
+    double mv = 0;
+    cv::minMaxLoc(merged_, nullptr, &mv, nullptr, &m);
+    auto mat = [&](int y, int x) { return static_cast<double>(merged_.at<float>((y + H) % H, (x + W) % W)); };
+    qx = m.x + peak_offset(mat(m.y, m.x - 1), mv, mat(m.y, m.x + 1));
+    qy = m.y + peak_offset(mat(m.y - 1, m.x), mv, mat(m.y + 1, m.x));
+  }
+  pos_.x = std::clamp(s.centre.x + (qx + 0.5) * cell * s.frame_per_model.x, 0.0, frame.cols - 1e-3);
+  pos_.y = std::clamp(s.centre.y + (qy + 0.5) * cell * s.frame_per_model.y, 0.0, frame.rows - 1e-3);
 
   // Scale: the same filter in 1-D over the scale samples at the new position.
   scale_features(frame, pos_, scale_);

@@ -61,6 +61,11 @@ class Dsst {
   void learn_scale(bool first, int label_centre);
   void gaussian_label(cv::Point2d centre_cells);
   void check_frame(const cv::Mat& frame, const char* who) const;
+  // Staple's colour model on the translation sample in patch_ (BGR): learn the foreground / background
+  // histograms at the current estimate, or score every cell of the window.
+  void learn_colour(const Sample& s, bool first);
+  void colour_response(const Sample& s);
+  cv::Rect2d target_in_patch(const Sample& s) const;
 
   DsstParams p_;
   bool initialized_ = false;
@@ -104,6 +109,10 @@ class Dsst {
   std::vector<cv::Mat> scale_fhog_;
   cv::Mat scale_x_, scale_x_f_;     // d x S real, d x S complex
   cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_;
+  // Colour model (colour_weight > 0 and colour frames): 32x32x32-bin BGR histograms, each summing to 1.
+  bool colour_ = false;
+  std::vector<float> fg_hist_, bg_hist_, hist_tmp_fg_, hist_tmp_bg_;
+  cv::Mat likelihood_, colour_cells_, colour_resp_, merged_;
 };
 
 }  // namespace gpilot

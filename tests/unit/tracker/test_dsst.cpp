@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "dsst.hpp"
 #include "fhog.hpp"
@@ -50,6 +51,33 @@ TEST(Fhog, MirroredEdgeUsesTheOppositeSignedBinAndTheSameUnsignedOne) {
   EXPECT_GT(out[9].at<float>(4, 3), 0.1f);
   EXPECT_LT(out[0].at<float>(4, 3), 1e-6f);
   EXPECT_GT(out[18].at<float>(4, 3), 0.1f);
+}
+
+// Staple's colour model alone (colour_weight 1: the position is the colour response's peak): a red 40x60
+// block on a green field with grey speckle (the same speckle on the block, so FHOG sees nothing of the block's
+// own), moved 3 px right and 2 px down a frame, is followed to within a cell (4 px). PSR stays the filter's.
+TEST(Dsst, ColourModelAloneFollowsAColouredBlock) {
+  DsstParams p;
+  p.colour_weight = 1.0;
+  cv::Mat speckle(kFrame, CV_8UC1);
+  cv::RNG rng(7);
+  rng.fill(speckle, cv::RNG::UNIFORM, 0, 40);
+  auto frame_at = [&](cv::Point2d tl) {
+    cv::Mat f(kFrame, CV_8UC3, cv::Scalar(40, 160, 40));
+    f(cv::Rect(cv::Point(static_cast<int>(tl.x), static_cast<int>(tl.y)), cv::Size(40, 60))).setTo(cv::Scalar(40, 40, 200));
+    cv::Mat s3;
+    cv::cvtColor(speckle, s3, cv::COLOR_GRAY2BGR);
+    cv::add(f, s3, f);
+    return f;
+  };
+  Dsst d(p);
+  d.init(frame_at({300, 200}), cv::Rect2d(300, 200, 40, 60));
+  for (int i = 1; i <= 10; ++i) {
+    const cv::Point2d tl(300 + 3 * i, 200 + 2 * i);
+    const DsstEstimate e = d.update(frame_at(tl));
+    EXPECT_NEAR(e.box.x + e.box.width / 2, tl.x + 20, 4.0) << "frame " << i;
+    EXPECT_NEAR(e.box.y + e.box.height / 2, tl.y + 30, 4.0) << "frame " << i;
+  }
 }
 
 struct Truth {
