@@ -2,9 +2,9 @@
 // private network namespace), then the recorded log is judged against the scenario's ground truth, gesture by
 // gesture as the user made them, every frame from 0.8 s after each true change: the drone moves the way the
 // user points (within 15°), climbs on UP, descends on DOWN, closes in on CLOSER, backs off on FURTHER, drifts
-// < 10 cm at rest; no GESTURE_CMD asks for a motion while the user rests; the annotated video is written. The
-// decide stage's reaction and the frames still carrying the old command are reported (gpilot-eval-decide's
-// scoring). And each stage killed mid-run in turn: the setpoint is zero within 0.3 s, the stage is restarted,
+// < 10 cm at rest; no FLIGHT_SETPOINT flies a motion while the user rests; the annotated video is written. The
+// decide stage's reaction, its frames still carrying the old command and its false commands are reported
+// (gpilot-eval-decide's scoring). And each stage killed mid-run in turn: the setpoint is zero within 0.3 s, the stage is restarted,
 // control resumes (after gpilot-flight, once the operator engages again).
 //
 // One ctest entry per scenario and per killed stage (tests/e2e/pipeline/CMakeLists.txt). The run's folder is
