@@ -1,5 +1,5 @@
-// The command line every gpilot process shares: --config, --set, --lcm-url, --help with the stage's
-// description. Config is loaded and the whole file validated before the bus is touched; a bad config
+// The command line every gpilot process shares: --config, --set, --lcm-url, --log-level, --version, --help
+// with the stage's description. Config is loaded and the whole file validated before the bus is touched; a bad config
 // exits with status 2, a bus that cannot start with 3, any other error with 1. A process with a bus
 // publishes its effective config on CONFIG when it starts.
 #pragma once
@@ -37,7 +37,17 @@ class ServiceCli {
   std::string config_file_;
   std::vector<std::string> sets_;
   std::string lcm_url_;
+  std::string log_level_;
 };
+
+// What --version prints after the program's name: `git describe --always --dirty` at build time, or the
+// project version where it was built without git.
+const char* gpilot_version();
+
+// For tools with their own CLI::App: --version ("NAME VERSION") and --log-level, as ServiceCli gives them;
+// after parsing, apply_log_level(level) (returns false with the reason logged for a level that is none).
+void add_standard_flags(CLI::App& app, const std::string& name, std::string& log_level);
+bool apply_log_level(const std::string& log_level);
 
 // Loads a config file ("" = defaults), applies section.key=value overrides and validates every section.
 Config load_config(const std::string& file, const std::vector<std::string>& sets);

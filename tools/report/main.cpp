@@ -11,6 +11,7 @@
 #include "analyze_log.hpp"
 #include "config.hpp"
 #include "decide/decide_params.hpp"
+#include "log.hpp"
 #include "service_cli.hpp"
 #include "trajectory_plot.hpp"
 
@@ -27,7 +28,7 @@ std::string json_list(const std::vector<std::string>& items) {
 int report(const std::string& log_path, const std::string& out_dir, bool json, int buffer_size) {
   using namespace gpilot;
   const LogAnalysis a = analyse_log(log_path, buffer_size, kName);
-  for (const auto& w : a.warnings) std::fprintf(stderr, "%s: warning: %s\n", kName, w.c_str());
+  for (const auto& w : a.warnings) gpilot::log_warn("%s", w.c_str());
 
   const Summary& s = a.summary;
   std::string rejected = "{";
@@ -50,7 +51,7 @@ int report(const std::string& log_path, const std::string& out_dir, bool json, i
                               std::to_string(static_cast<long long>(s.duration_s + 0.5)) + " s)";
     if (!cv::imwrite(png, draw_trajectory(a.path, title))) throw std::runtime_error("cannot write " + png);
     if (!std::ifstream(json_path)) throw std::runtime_error("cannot write " + json_path);
-    std::fprintf(stderr, "%s: wrote %s and %s\n", kName, json_path.c_str(), png.c_str());
+    gpilot::log_info("wrote %s and %s", json_path.c_str(), png.c_str());
   }
   std::fputs(json ? j.c_str() : summary_table(s).c_str(), stdout);
   return 0;
@@ -72,20 +73,23 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print the summary JSON on stdout instead of the table");
   app.add_option("--config", config_file, "the run's config (for decide.buffer_size; default: built-in defaults)");
   app.add_option("--set", sets, "override one key: section.key=value (repeatable)");
+  std::string log_level;
+  gpilot::add_standard_flags(app, kName, log_level);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (!gpilot::apply_log_level(log_level)) return 2;
   try {
     const gpilot::Config config = gpilot::load_config(config_file, sets);
     const auto decide = config.section<gpilot::DecideParams>("decide");
     return report(log, out, json, decide.buffer_size);
   } catch (const gpilot::ConfigError& e) {
-    std::fprintf(stderr, "%s: config error: %s\n", kName, e.what());
+    gpilot::log_error("config error: %s", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: error: %s\n", kName, e.what());
+    gpilot::log_error("%s", e.what());
     return 1;
   }
 }

@@ -9,6 +9,8 @@
 
 #include "hands/skin_data.hpp"
 #include "hands/skin_model.hpp"
+#include "log.hpp"
+#include "service_cli.hpp"
 
 using namespace gpilot;
 
@@ -30,13 +32,16 @@ int main(int argc, char** argv) {
   app.add_option("--bins", bins, "histogram bins per channel (power of two)")->check(CLI::Range(2, 256));
   app.add_option("--sigma", sigma, "Gaussian smoothing of the counts, in bins (0 = none)")->check(CLI::Range(0.0, 16.0));
   app.add_option("--out", out, "model file to write (YAML)")->required();
+  std::string log_level;
+  add_standard_flags(app, "gpilot-skin-train", log_level);
   CLI11_PARSE(app, argc, argv);
+  if (!apply_log_level(log_level)) return 2;
   if (pixel_files.empty() && image_dirs.empty()) {
-    std::fprintf(stderr, "gpilot-skin-train: give --pixels and/or --images/--masks\n");
+    log_error("give --pixels and/or --images/--masks");
     return 2;
   }
   if (image_dirs.size() != mask_dirs.size()) {
-    std::fprintf(stderr, "gpilot-skin-train: each --images folder needs one --masks folder\n");
+    log_error("each --images folder needs one --masks folder");
     return 2;
   }
   try {
@@ -51,7 +56,7 @@ int main(int argc, char** argv) {
         skin += p.skin;
       }
       how << "pixels " << f << ": " << skin << " skin, " << px.size() - static_cast<size_t>(skin) << " not\n";
-      std::fprintf(stderr, "%s: %zu pixels\n", f.c_str(), px.size());
+      log_info("%s: %zu pixels", f.c_str(), px.size());
     }
     for (size_t d = 0; d < image_dirs.size(); ++d) {
       const auto pairs = pair_images_and_masks(image_dirs[d], mask_dirs[d]);
@@ -67,7 +72,7 @@ int main(int argc, char** argv) {
             hist.add(c[0], c[1], c[2], label == MaskLabel::Skin, image_weight);
             (label == MaskLabel::Skin ? skin : non) += 1;
           }
-        if ((i + 1) % 100 == 0) std::fprintf(stderr, "%s: %zu/%zu images\n", image_dirs[d].c_str(), i + 1, pairs.size());
+        if ((i + 1) % 100 == 0) log_info("%s: %zu/%zu images", image_dirs[d].c_str(), i + 1, pairs.size());
       }
       how << "images " << image_dirs[d] << " (" << pairs.size() << " with masks): " << skin << " skin, " << non
           << " not, weight " << image_weight << "\n";
@@ -77,9 +82,9 @@ int main(int argc, char** argv) {
     opt.description = how.str();
     const SkinModel model = SkinModel::train(hist, opt);
     model.save(out);
-    std::fprintf(stderr, "wrote %s (%d^3 bins)\n%s", out.c_str(), bins, opt.description.c_str());
+    log_info("wrote %s (%d^3 bins)\n%s", out.c_str(), bins, opt.description.c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "gpilot-skin-train: %s\n", e.what());
+    log_error("%s", e.what());
     return 1;
   }
   return 0;

@@ -158,8 +158,8 @@ TEST(Config, CrossFieldRulesAreChecked) {
   EXPECT_EQ(err("decide: {buffer_size: 20}"), "decide.out_threshold: 30 must be below buffer_size 20");
   EXPECT_EQ(err("decide: {out_threshold: 60}"), "decide.out_threshold: 60 must be below buffer_size 60");
   EXPECT_EQ(err("decide: {front_threshold: 60}"), "decide.front_threshold: 60 must be below buffer_size 60");
-  EXPECT_EQ(err("decide: {evidence_enter: 11}"), "decide.evidence_enter: 11 must be at most evidence_max 10");
-  EXPECT_EQ(err("decide: {evidence_leave: 3}"), "decide.evidence_leave: 3 must be below evidence_enter 3");
+  EXPECT_EQ(err("decide: {evidence_enter: 11, evidence_max: 10}"), "decide.evidence_enter: 11 must be at most evidence_max 10");
+  EXPECT_EQ(err("decide: {evidence_enter: 3, evidence_leave: 3}"), "decide.evidence_leave: 3 must be below evidence_enter 3");
   EXPECT_EQ(err("hands: {face_remove_ratio: 0.6, legs_remove_ratio: 0.4}"),
             "hands.legs_remove_ratio: face_remove_ratio + legs_remove_ratio = 1.0 removes the whole user box (must be below 1)");
   // a nested group is checked under its own path
