@@ -5,26 +5,14 @@
 #include <cstdint>
 
 #include "decide/decide_params.hpp"
+#include "decide/decide_service.hpp"
 #include "decide/gesture_decider.hpp"
 #include "fuzz_input.hpp"
 #include "message_checks.hpp"
 
 namespace {
 
-// HAND_OBS -> the core's observation, as gpilot-decide converts it.
-gpilot::HandObservation observation(const gpilot::hand_obs_t& m) {
-  gpilot::HandObservation o;
-  o.utime = m.utime;
-  o.seq = m.seq;
-  o.track_id = m.track_id;
-  o.tracking = m.track_status == gpilot::user_track_t::STATUS_TRACKING;
-  o.kind = static_cast<gpilot::HandObservation::Kind>(m.kind);
-  o.vector = {m.vector[0], m.vector[1]};
-  o.user_box_width = m.user_box[2];
-  return o;
-}
-
-// The command -> GESTURE_CMD, as gpilot-decide publishes it.
+// The command -> GESTURE_CMD, as gpilot-decide publishes it (its to_message is private to decide_service.cpp).
 gpilot::gesture_cmd_t message(const gpilot::GestureCommand& c) {
   gpilot::gesture_cmd_t m{};
   m.utime = c.utime;
@@ -67,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     m.vector[0] = in.coordinate() / 4.0f - 256.0f;
     m.vector[1] = in.coordinate() / 4.0f - 256.0f;
     if (!gpilot::check_message(m).empty()) continue;  // rejected by BusNode before the stage
-    const gpilot::GestureCommand c = decider.update(observation(m));
+    const gpilot::GestureCommand c = decider.update(gpilot::to_hand_observation(m));
     const std::string why = gpilot::check_message(message(c));
     if (!why.empty()) gpilot::fuzz::fail("decide published a GESTURE_CMD that is rejected: " + why);
   }
