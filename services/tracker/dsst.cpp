@@ -195,6 +195,11 @@ cv::Rect2d Dsst::target_in_patch(const Sample& s) const {
 // Foreground: the target box shrunk by a tenth each side (Staple's inner region, less background at its
 // corners); background: the window outside the whole target box.
 void Dsst::learn_colour(const Sample& s, bool first) {
+  if (first) {
+    fg_hist_.assign(kColourBins, 0.0f);
+    bg_hist_.assign(kColourBins, 0.0f);
+  }
+  if (patch_.type() != CV_8UC3) return;  // a grey frame within a colour track: not learnt
   const cv::Rect2d t = target_in_patch(s);
   const cv::Rect2d inner(t.x + 0.1 * t.width, t.y + 0.1 * t.height, 0.8 * t.width, 0.8 * t.height);
   hist_tmp_fg_.assign(kColourBins, 0.0f);
@@ -213,12 +218,8 @@ void Dsst::learn_colour(const Sample& s, bool first) {
       }
     }
   }
-  if (nf == 0 || nb == 0) return;
+  if (nf == 0 || nb == 0) return;  // a window all target or all border: nothing to learn from
   const float rate = first ? 1.0f : static_cast<float>(p_.colour_learning_rate);
-  if (first) {
-    fg_hist_.assign(kColourBins, 0.0f);
-    bg_hist_.assign(kColourBins, 0.0f);
-  }
   for (size_t i = 0; i < static_cast<size_t>(kColourBins); ++i) {
     fg_hist_[i] = (1 - rate) * fg_hist_[i] + rate * static_cast<float>(hist_tmp_fg_[i] / nf);
     bg_hist_[i] = (1 - rate) * bg_hist_[i] + rate * static_cast<float>(hist_tmp_bg_[i] / nb);
@@ -228,6 +229,10 @@ void Dsst::learn_colour(const Sample& s, bool first) {
 // Per pixel P(target | colour) = fg / (fg + bg); per cell of the window, its mean over a target-sized box
 // centred there (the correlation response's coordinates: the label peaks at the target's cell).
 void Dsst::colour_response(const Sample& s) {
+  if (patch_.type() != CV_8UC3) {  // a grey frame within a colour track: no colour evidence
+    colour_resp_ = cv::Mat::zeros(cells_, CV_32F);
+    return;
+  }
   likelihood_.create(patch_.size(), CV_32F);
   for (int y = 0; y < patch_.rows; ++y) {
     const cv::Vec3b* row = patch_.ptr<cv::Vec3b>(y);

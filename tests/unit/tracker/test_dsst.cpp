@@ -80,6 +80,25 @@ TEST(Dsst, ColourModelAloneFollowsAColouredBlock) {
   }
 }
 
+// A grey frame of the same size within a colour track (a camera switching to GRAY8) is tracked on the filter
+// alone, and a box the size of the frame (no background to learn colour from) starts and tracks.
+TEST(Dsst, ColourTrackTakesGreyFramesAndAFrameSizedBox) {
+  DsstParams p;
+  p.colour_weight = 0.15;
+  cv::Mat colour(120, 160, CV_8UC3);
+  cv::RNG(3).fill(colour, cv::RNG::UNIFORM, 0, 255);
+  Dsst d(p);
+  d.init(colour, cv::Rect2d(60, 40, 40, 40));
+  cv::Mat grey;
+  cv::cvtColor(colour, grey, cv::COLOR_BGR2GRAY);
+  const DsstEstimate e = d.update(grey);
+  EXPECT_NEAR(e.box.x, 60.0, 1.0);
+  EXPECT_NEAR(d.update(colour).box.y, 40.0, 1.0);
+  Dsst whole(p);
+  whole.init(colour, cv::Rect2d(0, 0, 160, 120));
+  EXPECT_TRUE(std::isfinite(whole.update(colour).psr));
+}
+
 struct Truth {
   cv::Point2d centre;
   double scale;
