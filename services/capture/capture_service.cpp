@@ -151,7 +151,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
   const int64_t max_frames = o.duration_s > 0 ? static_cast<int64_t>(std::ceil(o.duration_s * fps - 1e-9)) : -1;
   const int64_t period = std::max<int64_t>(1, seconds_to_utime(1.0 / fps));
   int64_t next_tick = monotonic_utime();
-  int64_t seq = 0;
+  int64_t seq = 0, last_utime = 0;
   bool degraded = false;
   auto finish = [&](const std::string& why) {
     say(node, why);
@@ -171,6 +171,8 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     std::string why;
     switch (produce(seq, f, why)) {
       case ReadStatus::Frame: {
+        f.utime = std::max(f.utime, last_utime + 1);  // each frame its own time, even read within a microsecond
+        last_utime = f.utime;
         const image_t img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality);
         node.publish("CAMERA", img);
         if (f.truth) node.publish("GROUND_TRUTH", to_message(*f.truth, f.utime, seq));
