@@ -69,6 +69,7 @@ void apply(P& params, const char* section, const std::vector<std::string>& sets)
   ParamReader reader(node, section);
   params.visit(reader);
   reader.finish();
+  check_params(params, section);  // the choices and cross-field rules a config file must obey too
 }
 
 struct Result {
