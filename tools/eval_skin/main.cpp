@@ -11,12 +11,15 @@
 #include "hands/skin_adapter.hpp"
 #include "hands/skin_data.hpp"
 #include "hands/skin_model.hpp"
+#include "json_out.hpp"
 #include "paths.hpp"
 #include "service_cli.hpp"
 
 using namespace gpilot;
 
 namespace {
+
+json rounded4(double v) { return rounded(v, 4); }  // the table's digits
 
 void write_roc_png(const std::string& path, const LevelCounts& counts, const LevelCounts::Score& at, const std::string& title) {
   const int size = 480, margin = 50;
@@ -144,11 +147,15 @@ int main(int argc, char** argv) {
       }
       std::fprintf(stderr, "\n");
       if (json) {
-        std::printf("{\"model\":\"%s\",\"data\":\"%s\",\"images\":%zu,\"threshold\":%.4f,\"users_learnt\":%lld,"
-                    "\"table\":{\"precision\":%.4f,\"recall\":%.4f,\"f1\":%.4f},"
-                    "\"adapted\":{\"precision\":%.4f,\"recall\":%.4f,\"f1\":%.4f}}\n",
-                    model_path.c_str(), images.c_str(), pairs.size(), threshold, static_cast<long long>(faces), fixed.precision(),
-                    fixed.recall(), fixed.f1(), adapted.precision(), adapted.recall(), adapted.f1());
+        const gpilot::json out = {{"model", model_path},
+                          {"data", images},
+                          {"images", pairs.size()},
+                          {"threshold", rounded4(threshold)},
+                          {"users_learnt", faces},
+                          {"table", {{"precision", rounded4(fixed.precision())}, {"recall", rounded4(fixed.recall())}, {"f1", rounded4(fixed.f1())}}},
+                          {"adapted", {{"precision", rounded4(adapted.precision())}, {"recall", rounded4(adapted.recall())},
+                                       {"f1", rounded4(adapted.f1())}}}};
+        std::printf("%s\n", out.dump().c_str());
       } else {
         std::printf("model      %s\ndata       %s (%zu images, user learnt on %lld)\nthreshold  %.3f\n\n", model_path.c_str(),
                     images.c_str(), pairs.size(), static_cast<long long>(faces), threshold);
@@ -180,12 +187,19 @@ int main(int argc, char** argv) {
       if (s.f1 > best.f1) best = s;
     if (!roc_png.empty()) write_roc_png(roc_png, counts, at, data);
     if (json) {
-      std::printf(
-          "{\"model\":\"%s\",\"data\":\"%s\",\"threshold\":%.4f,\"precision\":%.4f,\"recall\":%.4f,\"f1\":%.4f,"
-          "\"false_positive_rate\":%.4f,\"auc\":%.4f,\"skin_pixels\":%lld,\"non_skin_pixels\":%lld,"
-          "\"best_f1\":%.4f,\"best_f1_threshold\":%.4f}\n",
-          model_path.c_str(), data.c_str(), at.threshold, at.precision, at.recall, at.f1, at.false_positive_rate, counts.auc(),
-          static_cast<long long>(counts.skin_total()), static_cast<long long>(counts.non_skin_total()), best.f1, best.threshold);
+      const gpilot::json out = {{"model", model_path},
+                        {"data", data},
+                        {"threshold", rounded4(at.threshold)},
+                        {"precision", rounded4(at.precision)},
+                        {"recall", rounded4(at.recall)},
+                        {"f1", rounded4(at.f1)},
+                        {"false_positive_rate", rounded4(at.false_positive_rate)},
+                        {"auc", rounded4(counts.auc())},
+                        {"skin_pixels", counts.skin_total()},
+                        {"non_skin_pixels", counts.non_skin_total()},
+                        {"best_f1", rounded4(best.f1)},
+                        {"best_f1_threshold", rounded4(best.threshold)}};
+      std::printf("%s\n", out.dump().c_str());
     } else {
       std::printf("model      %s\ndata       %s\npixels     %lld skin, %lld not skin\n", model_path.c_str(), data.c_str(),
                   static_cast<long long>(counts.skin_total()), static_cast<long long>(counts.non_skin_total()));
