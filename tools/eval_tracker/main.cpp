@@ -26,6 +26,7 @@
 
 #include "dsst.hpp"
 #include "face_detector.hpp"
+#include "json_out.hpp"
 #include "metrics.hpp"
 #include "sequence.hpp"
 #include "service_cli.hpp"
@@ -155,15 +156,6 @@ std::string num(double v, int prec = 4) {
   return s.str();
 }
 
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    o += c;
-  }
-  return o;
-}
-
 struct Result {
   std::string name;
   TrackScores scores;
@@ -182,18 +174,22 @@ std::string int_list(const std::vector<int>& v) {
   return s;
 }
 
-std::string result_fields(const Result& r) {
+// One tracker's scores into a --json object (the table's digits; NaN: no truth -> null).
+void add_result_fields(gpilot::json& j, const Result& r) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::ostringstream s;
-  s << "\"success_auc\": " << num(r.has_truth ? r.scores.success_auc : nan)
-    << ", \"precision_20px\": " << num(r.has_truth ? r.scores.precision_20px : nan)
-    << ", \"mean_iou\": " << num(r.has_truth ? r.scores.mean_iou : nan) << ", \"frames_lost\": " << r.lost
-    << ", \"fps\": " << num(r.fps, 1) << ", \"ms_per_frame\": " << num(r.ms, 3) << ", \"final_box\": [" << num(r.final_box.x, 1)
-    << ", " << num(r.final_box.y, 1) << ", " << num(r.final_box.width, 1) << ", " << num(r.final_box.height, 1) << "]"
-    << ", \"absent_frames\": " << r.absence.absent_frames << ", \"absent_reported_lost\": " << r.absence.reported_lost
-    << ", \"refound_after\": [" << int_list(r.absence.refound_after) << "]"
-    << ", \"frames_searching\": " << r.search_frames << ", \"ms_per_frame_searching\": " << num(r.search_ms, 3);
-  return s.str();
+  j["success_auc"] = gpilot::rounded(r.has_truth ? r.scores.success_auc : nan, 4);
+  j["precision_20px"] = gpilot::rounded(r.has_truth ? r.scores.precision_20px : nan, 4);
+  j["mean_iou"] = gpilot::rounded(r.has_truth ? r.scores.mean_iou : nan, 4);
+  j["frames_lost"] = r.lost;
+  j["fps"] = gpilot::rounded(r.fps, 1);
+  j["ms_per_frame"] = gpilot::rounded(r.ms, 3);
+  j["final_box"] = {gpilot::rounded(r.final_box.x, 1), gpilot::rounded(r.final_box.y, 1),
+                    gpilot::rounded(r.final_box.width, 1), gpilot::rounded(r.final_box.height, 1)};
+  j["absent_frames"] = r.absence.absent_frames;
+  j["absent_reported_lost"] = r.absence.reported_lost;
+  j["refound_after"] = r.absence.refound_after;
+  j["frames_searching"] = r.search_frames;
+  j["ms_per_frame_searching"] = gpilot::rounded(r.search_ms, 3);
 }
 
 int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path,
@@ -338,13 +334,19 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
 
   const Result& ours = results[0];
   if (json) {
-    std::printf("{\"sequence\": \"%s\", \"frames\": %d, \"frames_with_truth\": %d, \"init\": \"%s\", \"init_frame\": %d, "
-                "\"threads\": %d, \"tracker\": \"%s\", %s, \"psr_min\": %s, \"psr_mean\": %s, \"trackers\": [",
-                json_escape(src->name()).c_str(), frames, truth_frames, init_how.c_str(), init_frame, threads,
-                ours.name.c_str(), result_fields(ours).c_str(), num(ours.psr_min, 2).c_str(), num(ours.psr_mean, 2).c_str());
-    for (size_t i = 0; i < results.size(); ++i)
-      std::printf("%s{\"name\": \"%s\", %s}", i ? ", " : "", results[i].name.c_str(), result_fields(results[i]).c_str());
-    std::printf("]}\n");
+    gpilot::json out = {{"sequence", src->name()}, {"frames", frames},   {"frames_with_truth", truth_frames},
+                        {"init", init_how},        {"init_frame", init_frame}, {"threads", threads},
+                        {"tracker", ours.name}};
+    add_result_fields(out, ours);
+    out["psr_min"] = gpilot::rounded(ours.psr_min, 2);
+    out["psr_mean"] = gpilot::rounded(ours.psr_mean, 2);
+    out["trackers"] = gpilot::json::array();
+    for (const auto& r : results) {
+      gpilot::json t = {{"name", r.name}};
+      add_result_fields(t, r);
+      out["trackers"].push_back(t);
+    }
+    std::printf("%s\n", out.dump().c_str());
     return 0;
   }
   std::printf("%s: %d frames (%d with ground truth), initialised from %s at frame %d, %d OpenCV thread(s)\n",
