@@ -28,6 +28,23 @@ void for_each_section(F&& f) {
   f("image", ImageLimits{});
 }
 
+// Rules between sections (a section's own rules are its Params::check()).
+void check_across_sections(const Config& config) {
+  const auto image = config.section<ImageLimits>("image");
+  const auto capture = config.section<CaptureParams>("capture");
+  // Every frame consumer refuses a frame larger than image.max_*: frames capture makes larger feed nobody.
+  const ParamCheck c("image");
+  const auto fits = [&](const char* key, int limit, const char* source, int size) {
+    c.require(size <= limit, key,
+              std::to_string(limit) + " is below " + source + " " + std::to_string(size) +
+                  " (every stage would refuse its frames)");
+  };
+  fits("max_width", image.max_width, "capture.width", capture.width);
+  fits("max_height", image.max_height, "capture.height", capture.height);
+  fits("max_width", image.max_width, "capture.synthetic.width", capture.synthetic.width);
+  fits("max_height", image.max_height, "capture.synthetic.height", capture.synthetic.height);
+}
+
 }  // namespace
 
 void validate_config(const Config& config) {
@@ -39,6 +56,7 @@ void validate_config(const Config& config) {
   for (const auto& s : config.section_names())
     if (std::find(known.begin(), known.end(), s) == known.end())
       throw ConfigError(config.origin() + ": unknown section '" + s + "' (see deploy/config/default.yaml)");
+  check_across_sections(config);
 }
 
 std::string effective_config_yaml(const Config& config) {

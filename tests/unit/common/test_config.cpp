@@ -169,6 +169,12 @@ TEST(Config, CrossFieldRulesAreChecked) {
   EXPECT_EQ(err("flight: {min_height_m: 0.2, max_height_m: 0.3}\ndecide: {buffer_size: 20, out_threshold: 10, "
                 "front_threshold: 19}"),
             "<no error>");
+  // between sections: frames capture makes must fit what the stages take
+  EXPECT_EQ(err("capture: {width: 3840, height: 2160}"),
+            "image.max_width: 1920 is below capture.width 3840 (every stage would refuse its frames)");
+  EXPECT_EQ(err("capture: {synthetic: {height: 1200}}"),
+            "image.max_height: 1080 is below capture.synthetic.height 1200 (every stage would refuse its frames)");
+  EXPECT_EQ(err("capture: {width: 3840, height: 2160}\nimage: {max_width: 3840, max_height: 2160}"), "<no error>");
   // a stage reading its section gets the same check (not only validate_config)
   EXPECT_EQ(error_of([] { Config::from_string("decide: {buffer_size: 5}").section<DecideParams>("decide"); }),
             "decide.out_threshold: 30 must be below buffer_size 5");
