@@ -14,6 +14,7 @@
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/vehicle_state_t.hpp"
 #include "image_codec.hpp"
+#include "log.hpp"
 #include "synthetic_world.hpp"
 
 namespace gpilot {
@@ -48,8 +49,6 @@ ground_truth_t to_message(const SyntheticTruth& t, int64_t utime, int64_t seq) {
   m.camera_yaw = static_cast<float>(t.camera.yaw);
   return m;
 }
-
-void say(const BusNode& node, const std::string& what) { std::fprintf(stderr, "%s: %s\n", node.name().c_str(), what.c_str()); }
 
 // One frame from whichever source: the frame, its utime and (synthetic world) its ground truth.
 struct Produced {
@@ -138,13 +137,13 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     }
   } catch (const std::exception& e) {
     // A source that cannot open: said on stderr and in HEALTH, exit status 1.
-    say(node, std::string("error: ") + e.what());
+    log_error("%s", e.what());
     node.set_state(health_t::STATE_ERROR, e.what());
     node.publish_health();
     return 1;
   }
   if (!camera || camera->is_open())
-    say(node, "publishing CAMERA" + std::string(world ? " and GROUND_TRUTH" : "") + " from " + opened);
+    log_info("publishing CAMERA%s from %s", world ? " and GROUND_TRUTH" : "", opened.c_str());
   node.set_state(health_t::STATE_OK, opened);
   node.publish_health();
 
@@ -154,7 +153,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
   int64_t seq = 0, last_utime = 0;
   bool degraded = false;
   auto finish = [&](const std::string& why) {
-    say(node, why);
+    log_info("%s", why.c_str());
     node.set_state(health_t::STATE_STOPPING, why);
     node.publish_health();
     return 0;
@@ -180,13 +179,13 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
         if (degraded) {
           degraded = false;
           opened = camera ? camera->describe() : opened;
-          say(node, "source back: " + opened);
+          log_info("source back: %s", opened.c_str());
           node.set_state(health_t::STATE_OK, opened);
         }
         break;
       }
       case ReadStatus::Skip:
-        say(node, why);
+        log_warn("%s", why.c_str());
         node.reject(why);
         break;
       case ReadStatus::End:
@@ -195,12 +194,12 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
         char every[64];
         std::snprintf(every, sizeof every, "; retrying every %g s", p.camera_retry_s);
         const std::string detail = why + every;
-        if (!degraded) say(node, detail);
+        if (!degraded) log_warn("%s", detail.c_str());
         degraded = true;
         node.set_state(health_t::STATE_DEGRADED, detail);
         serve_until(monotonic_utime() + seconds_to_utime(p.camera_retry_s));
         std::string reopen_why;
-        if (camera && camera->open(reopen_why)) say(node, "camera reopened: " + camera->describe());
+        if (camera && camera->open(reopen_why)) log_info("camera reopened: %s", camera->describe().c_str());
         next_tick = monotonic_utime();
         continue;
       }
