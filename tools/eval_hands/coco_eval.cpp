@@ -8,6 +8,7 @@
 
 #include "coco_keypoints.hpp"
 #include "hands/hand_observer.hpp"
+#include "log.hpp"
 #include "hands/hand_overlay.hpp"
 #include "hands/skin_model.hpp"
 #include "paths.hpp"
@@ -49,7 +50,7 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
       std::fprintf(stderr, "[%zu/%zu] %s: %zu persons%s\n", image_no, coco.images().size(), im.file_name.c_str(), people.size(),
                    bgr.empty() ? " (image does not load: skipped)" : "");
     if (!bgr.empty() && (bgr.cols != im.width || bgr.rows != im.height))
-      std::fprintf(stderr, "warning: %s is %dx%d, the annotations say %dx%d\n", path.c_str(), bgr.cols, bgr.rows, im.width, im.height);
+      log_warn("%s is %dx%d, the annotations say %dx%d", path.c_str(), bgr.cols, bgr.rows, im.width, im.height);
 
     for (const CocoAnnotation* a : people) {
       board.add_read();

@@ -12,6 +12,7 @@
 #include "hands/skin_data.hpp"
 #include "hands/skin_model.hpp"
 #include "json_out.hpp"
+#include "log.hpp"
 #include "paths.hpp"
 #include "service_cli.hpp"
 
@@ -121,11 +122,11 @@ int main(int argc, char** argv) {
                "bounding box; precision/recall/F1 of the table alone and adapted on the same pixels (the square excluded)");
   return cli.run(argc, argv, [&](const Config& config) {
     if (adapt && images.empty()) {
-      std::fprintf(stderr, "gpilot-eval-skin: --adapt needs --images DIR --masks DIR\n");
+      log_error("--adapt needs --images DIR --masks DIR");
       return 2;
     }
     if (pixels.empty() == images.empty() || images.empty() != masks.empty()) {
-      std::fprintf(stderr, "gpilot-eval-skin: give either --pixels FILE or --images DIR --masks DIR\n");
+      log_error("give either --pixels FILE or --images DIR --masks DIR");
       return 2;
     }
     const auto params = config.section<HandsParams>("hands");

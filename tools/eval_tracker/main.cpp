@@ -27,6 +27,7 @@
 #include "dsst.hpp"
 #include "face_detector.hpp"
 #include "json_out.hpp"
+#include "log.hpp"
 #include "metrics.hpp"
 #include "sequence.hpp"
 #include "service_cli.hpp"
@@ -220,7 +221,7 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
 #ifdef GPILOT_HAVE_DLIB
     runners.push_back(std::make_unique<DlibRunner>());
 #else
-    std::fprintf(stderr, "dlib not found at build time (libdlib-dev): its correlation_tracker is left out\n");
+    log_warn("dlib not found at build time (libdlib-dev): its correlation_tracker is left out");
 #endif
   }
 
@@ -403,7 +404,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "OpenCV threads (default 1: the cost on one core; times are thread CPU time)");
   return cli.run(argc, argv, [&](const gpilot::Config& config) {
     if (!seq.empty() + !log.empty() + !synthetic.empty() != 1) {
-      std::fprintf(stderr, "gpilot-eval-tracker: give one of: a sequence folder, --log, --synthetic\n");
+      gpilot::log_error("give one of: a sequence folder, --log, --synthetic");
       return 2;
     }
     return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads);

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "clock.hpp"
+#include "log.hpp"
 #include "notify_socket.hpp"
 #include "paths.hpp"
 #include "service_cli.hpp"
@@ -99,15 +100,14 @@ void watch(Child& c, int64_t now, BusNode& node) {
   if (s.ready && !c.ready) {
     c.ready = true;
     if (c.frozen_since) {
-      std::fprintf(stderr, "gpilot-launch: %s ready again %.2f s after its last watchdog ping\n", c.spec.name.c_str(),
-                   (now - c.frozen_since) * 1e-6);
+      log_info("%s ready again %.2f s after its last watchdog ping", c.spec.name.c_str(), (now - c.frozen_since) * 1e-6);
       c.frozen_since = 0;
     }
   }
   if (s.stopping) c.ready = false;  // on its way out (STOPPING=1): silence is expected now
   if (!c.ready || now - c.last_ping <= seconds_to_utime(c.spec.watchdog_s)) return;
-  std::fprintf(stderr, "gpilot-launch: %s sent no watchdog ping for %.2f s (watchdog_s %.2f): frozen, SIGKILL\n",
-               c.spec.name.c_str(), (now - c.last_ping) * 1e-6, c.spec.watchdog_s);
+  log_warn("%s sent no watchdog ping for %.2f s (watchdog_s %.2f): frozen, SIGKILL", c.spec.name.c_str(),
+           (now - c.last_ping) * 1e-6, c.spec.watchdog_s);
   node.set_state(health_t::STATE_DEGRADED, c.spec.name + " frozen: killed by the watchdog");
   kill(c.pid, SIGKILL);
   c.ready = false;
@@ -126,7 +126,7 @@ void stop_child(Child& c) {
     }
     usleep(20000);
   }
-  std::fprintf(stderr, "gpilot-launch: %s did not stop within %.1f s: SIGKILL\n", c.spec.name.c_str(), c.spec.stop_timeout_s);
+  log_warn("%s did not stop within %.1f s: SIGKILL", c.spec.name.c_str(), c.spec.stop_timeout_s);
   kill(c.pid, SIGKILL);
   waitpid(c.pid, &status, 0);
   c.pid = -1;
@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
     // Frames that made it through the tracker: one USER_TRACK each (listening to CAMERA would copy every image).
     long long frames = 0;
     node.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t&, int64_t) { ++frames; });
-    std::fprintf(stderr, "gpilot-launch: progress each second: frames tracked, decided mode, each stage's messages/s in>out\n");
+    log_info("progress each second: frames tracked, decided mode, each stage's messages/s in>out");
 
     std::vector<Child> children;
     for (const auto& s : specs) {
@@ -202,15 +202,15 @@ int main(int argc, char** argv) {
       if (s.watchdog_s > 0) c.notify = std::make_unique<NotifySocket>(s.name);
       if (c.path.empty()) {
         if (s.optional) {
-          std::fprintf(stderr, "gpilot-launch: %s: not built, skipped\n", s.name.c_str());
+          log_warn("%s: not built, skipped", s.name.c_str());
           continue;
         }
         throw ServiceSetError(s.name + ": no executable '" + s.command[0] + "' in " + bin_dir + " or PATH");
       }
       c.pid = spawn(c);
-      std::fprintf(stderr, "gpilot-launch: started %s (pid %d):", s.name.c_str(), c.pid);
-      for (const auto& w : s.command) std::fprintf(stderr, " %s", w.c_str());
-      std::fprintf(stderr, "\n");
+      std::string command;
+      for (const auto& w : s.command) command += " " + w;
+      log_info("started %s (pid %d):%s", s.name.c_str(), c.pid, command.c_str());
       children.push_back(std::move(c));
     }
     node.set_state(health_t::STATE_OK, "running " + std::to_string(children.size()) + " processes");
@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
                                                     : std::string("killed by signal ") + strsignal(WTERMSIG(status));
           // A source that reaches its end exits 0 and ends the run; one that crashes is restarted like any stage.
           if (c.spec.ends_run && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-            std::fprintf(stderr, "gpilot-launch: %s %s: run complete\n", c.spec.name.c_str(), how.c_str());
+            log_info("%s %s: run complete", c.spec.name.c_str(), how.c_str());
             exit_code = 0;
             node.stop();
             return;
@@ -237,9 +237,9 @@ int main(int argc, char** argv) {
           if (c.spec.respawn) {
             // After a crash, half a second (no busy restart loop); a frozen stage is back at once.
             c.restart_at = c.frozen_since ? now : now + kMicrosPerSecond / 2;
-            std::fprintf(stderr, "gpilot-launch: %s %s: restarting\n", c.spec.name.c_str(), how.c_str());
+            log_warn("%s %s: restarting", c.spec.name.c_str(), how.c_str());
           } else {
-            std::fprintf(stderr, "gpilot-launch: %s %s (not restarted)\n", c.spec.name.c_str(), how.c_str());
+            log_warn("%s %s (not restarted)", c.spec.name.c_str(), how.c_str());
           }
           node.set_state(health_t::STATE_DEGRADED, c.spec.name + " " + how);
         }
@@ -261,23 +261,26 @@ int main(int argc, char** argv) {
       fc.command = flight_control_t::COMMAND_ENGAGE;
       fc.source = "gpilot-launch";
       node.publish("FLIGHT_CONTROL", fc);
-      if (engage_sent == 1) std::fprintf(stderr, "gpilot-launch: engaged\n");
+      if (engage_sent == 1) log_info("engaged");
     });
     node.every(1.0, [&] {
       const double t = (monotonic_utime() - start) * 1e-6;
-      std::fprintf(stderr, "[%6.1f s] frames %lld | mode %s |", t, frames, mode >= 0 && mode <= 5 ? kModeNames[mode] : "-");
+      std::string stages;
       for (const auto& c : children) {
         const auto it = health.find(c.spec.name);
         std::string shortname = c.spec.name.rfind("gpilot-", 0) == 0 ? c.spec.name.substr(7) : c.spec.name;
+        char rates[64];
         if (c.pid < 0)
-          std::fprintf(stderr, " %s DOWN", shortname.c_str());
-        else if (it != health.end())
-          std::fprintf(stderr, " %s %.0f>%.0f", shortname.c_str(), it->second.rate_in_hz, it->second.rate_out_hz);
+          stages += " " + shortname + " DOWN";
+        else if (it != health.end() &&
+                 std::snprintf(rates, sizeof rates, " %.0f>%.0f", it->second.rate_in_hz, it->second.rate_out_hz) > 0)
+          stages += " " + shortname + rates;
       }
-      std::fprintf(stderr, "\n");
+      log_info("[%6.1f s] frames %lld | mode %s |%s", t, frames, mode >= 0 && mode <= 5 ? kModeNames[mode] : "-",
+               stages.c_str());
     });
     node.run();
-    std::fprintf(stderr, "gpilot-launch: stopping %zu processes\n", children.size());
+    log_info("stopping %zu processes", children.size());
     for (auto it = children.rbegin(); it != children.rend(); ++it) stop_child(*it);
     return exit_code;
   });

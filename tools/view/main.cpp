@@ -22,6 +22,7 @@
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/tracker_init_t.hpp"
 #include "image_codec.hpp"
+#include "log.hpp"
 #include "log_reader.hpp"
 #include "overlay.hpp"
 #include "service_cli.hpp"
@@ -176,7 +177,7 @@ class Viewer {
 
   void send_tracker_init(int8_t command, const cv::Rect& box) {
     if (!node_) {
-      std::fprintf(stderr, "%s: no bus in --log mode: TRACKER_INIT not sent\n", kName);
+      log_warn("no bus in --log mode: TRACKER_INIT not sent");
       return;
     }
     tracker_init_t m{};
@@ -189,13 +190,13 @@ class Viewer {
     m.box[3] = static_cast<float>(box.height);
     m.source = kName;
     node_->publish(channel::kTrackerInit, m);
-    std::fprintf(stderr, "%s: TRACKER_INIT %s %d,%d %dx%d\n", kName, command == tracker_init_t::COMMAND_RESET ? "reset" : "box",
-                 box.x, box.y, box.width, box.height);
+    log_info("TRACKER_INIT %s %d,%d %dx%d", command == tracker_init_t::COMMAND_RESET ? "reset" : "box", box.x, box.y,
+             box.width, box.height);
   }
 
   void send_flight_control(int8_t command) {
     if (!node_) {
-      std::fprintf(stderr, "%s: no bus in --log mode: FLIGHT_CONTROL not sent\n", kName);
+      log_warn("no bus in --log mode: FLIGHT_CONTROL not sent");
       return;
     }
     flight_control_t m{};
@@ -204,7 +205,7 @@ class Viewer {
     m.command = command;
     m.source = kName;
     node_->publish(channel::kFlightControl, m);
-    std::fprintf(stderr, "%s: FLIGHT_CONTROL %d\n", kName, command);
+    log_info("FLIGHT_CONTROL %d", command);
   }
 
   const ViewOptions& o_;
@@ -223,15 +224,15 @@ class Viewer {
 };
 
 void report(const Viewer& v) {
-  std::fprintf(stderr, "%s: %s\n", kName, v.status().c_str());
+  log_info("%s", v.status().c_str());
   if (const VideoSink* s = v.sink()) {
     if (s->frames_written() == 0 && s->pngs_written() == 0)
-      std::fprintf(stderr, "%s: no frame was drawn: nothing written\n", kName);
+      log_warn("no frame was drawn: nothing written");
     if (s->frames_written() > 0)
-      std::fprintf(stderr, "%s: MP4: %lld frames at %.2f fps (%s)\n", kName, static_cast<long long>(s->frames_written()),
-                   s->fps(), s->fourcc().c_str());
+      log_info("MP4: %lld frames at %.2f fps (%s)", static_cast<long long>(s->frames_written()), s->fps(),
+               s->fourcc().c_str());
     if (s->pngs_written() > 0)
-      std::fprintf(stderr, "%s: %lld PNG files\n", kName, static_cast<long long>(s->pngs_written()));
+      log_info("%lld PNG files", static_cast<long long>(s->pngs_written()));
   }
 }
 
@@ -263,10 +264,10 @@ int run_log(ViewOptions o, bool window) {
     progress.update(log, viewer.status());
   }
   if (go_on) viewer.draw_ready(true);
-  for (const auto& w : log.warnings()) std::fprintf(stderr, "%s: warning: %s\n", kName, w.c_str());
+  for (const auto& w : log.warnings()) log_warn("%s", w.c_str());
   if (dispatch.rejected_total() > 0)
-    std::fprintf(stderr, "%s: warning: %lld messages did not decode or were invalid (last: %s)\n", kName,
-                 static_cast<long long>(dispatch.rejected_total()), dispatch.last_reject_reason().c_str());
+    log_warn("%lld messages did not decode or were invalid (last: %s)", static_cast<long long>(dispatch.rejected_total()),
+             dispatch.last_reject_reason().c_str());
   while (window && go_on && viewer.poll_window(50)) {
   }
   viewer.finish();
@@ -337,7 +338,7 @@ int main(int argc, char** argv) {
     }
     const char* display = std::getenv("DISPLAY");
     const bool window = !o.headless && display && *display;
-    if (!window && !o.headless) std::fprintf(stderr, "%s: no display: running headless\n", kName);
+    if (!window && !o.headless) log_warn("no display: running headless");
     if (!window && o.video.empty() && o.png_every.empty())
       throw std::invalid_argument("nothing to do without a window: give --video OUT.mp4 and/or --png-every N DIR");
     if (o.speed < 0) o.speed = window ? 1.0 : 0.0;
