@@ -258,15 +258,19 @@ Judged judge_gestures(const Recorded& r) {
     SCOPED_TRACE(line);
     switch (gesture) {
       case ground_truth_t::GESTURE_OUT: {
-        // The asked direction, frame by frame in the world (the drone yaws to keep facing the user as it goes).
+        // The asked direction, frame by frame in the world (the drone yaws to keep facing the user as it goes),
+        // as the user pointed kSettle earlier (within this gesture): a command follows the arm within that
+        // reaction time, so an arm that keeps moving (fine piloting) is followed with that lag, by design.
         double want[3] = {0, 0, 0};
+        size_t asked = seg.begin;
         for (size_t i = seg.begin; i < seg.end; ++i) {
           const auto& f = r.truth[i];
           if (f.t < from) continue;
+          while (asked + 1 < i && r.truth[asked + 1].t <= f.t - kSettle) ++asked;
           const auto s = state_at(r, f.t);
           if (!s) break;
           double w[3];
-          camera_to_world(f.m.expected_direction, s->yaw, w);
+          camera_to_world(r.truth[asked].m.expected_direction, s->yaw, w);
           for (int k = 0; k < 3; ++k) want[k] += w[k];
         }
         const double dot = want[0] * dn + want[1] * de + want[2] * dd;
