@@ -30,6 +30,17 @@ HandObservation to_hand_observation(const hand_obs_t& m) {
 
 namespace {
 
+const char* reset_reason(GestureDecider::Reset r) {
+  switch (r) {
+    case GestureDecider::Reset::Gap: return "gap in HAND_OBS: buffers emptied";
+    case GestureDecider::Reset::NewUser: return "new user track: buffers emptied";
+    case GestureDecider::Reset::TimeBackwards: return "HAND_OBS time went backwards: buffers emptied";
+    default: return nullptr;
+  }
+}
+
+}  // namespace
+
 gesture_cmd_t to_message(const GestureCommand& c) {
   gesture_cmd_t m{};
   m.utime = c.utime;
@@ -44,17 +55,6 @@ gesture_cmd_t to_message(const GestureCommand& c) {
   m.buffer_fill = static_cast<int16_t>(c.buffer_fill);
   return m;
 }
-
-const char* reset_reason(GestureDecider::Reset r) {
-  switch (r) {
-    case GestureDecider::Reset::Gap: return "gap in HAND_OBS: buffers emptied";
-    case GestureDecider::Reset::NewUser: return "new user track: buffers emptied";
-    case GestureDecider::Reset::TimeBackwards: return "HAND_OBS time went backwards: buffers emptied";
-    default: return nullptr;
-  }
-}
-
-}  // namespace
 
 std::shared_ptr<void> start_decide_service(const Config& config, BusNode& node) {
   auto decider = std::make_shared<GestureDecider>(config.section<DecideParams>("decide"));

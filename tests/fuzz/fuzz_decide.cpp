@@ -10,26 +10,6 @@
 #include "fuzz_input.hpp"
 #include "message_checks.hpp"
 
-namespace {
-
-// The command -> GESTURE_CMD, as gpilot-decide publishes it (its to_message is private to decide_service.cpp).
-gpilot::gesture_cmd_t message(const gpilot::GestureCommand& c) {
-  gpilot::gesture_cmd_t m{};
-  m.utime = c.utime;
-  m.seq = c.seq;
-  m.track_id = c.track_id;
-  m.mode = static_cast<int8_t>(c.mode);
-  for (int i = 0; i < 3; ++i) m.direction[i] = static_cast<float>(c.direction[i]);
-  m.user_box_width = static_cast<float>(c.user_box_width);
-  m.n_out = static_cast<int16_t>(c.n_out);
-  m.n_front_higher = static_cast<int16_t>(c.n_front_higher);
-  m.n_front_lower = static_cast<int16_t>(c.n_front_lower);
-  m.buffer_fill = static_cast<int16_t>(c.buffer_fill);
-  return m;
-}
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   gpilot::fuzz::Input in(data, size);
   gpilot::DecideParams params;
@@ -56,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     m.vector[1] = in.coordinate() / 4.0f - 256.0f;
     if (!gpilot::check_message(m).empty()) continue;  // rejected by BusNode before the stage
     const gpilot::GestureCommand c = decider.update(gpilot::to_hand_observation(m));
-    const std::string why = gpilot::check_message(message(c));
+    const std::string why = gpilot::check_message(gpilot::to_message(c));
     if (!why.empty()) gpilot::fuzz::fail("decide published a GESTURE_CMD that is rejected: " + why);
   }
   return 0;
