@@ -91,8 +91,9 @@ class BusNode {
 
   // handler(msg, receive_utime) runs on the loop thread for each valid message; receive_utime is on the
   // node's clock (the log's time in replay). queue_capacity > 0 bounds
-  // LCM's queue for this channel (its default is 30): a slow stage then skips the oldest messages instead of
-  // falling behind; LCM drops them before this node sees them, so the stage counts its own gaps (seq).
+  // LCM's queue for this channel (its default is 30): a slow stage then skips messages instead of falling
+  // behind. LCM 1.3.1 drops the arrivals that find the queue full (not the oldest queued), before this node
+  // sees them, so the stage counts its own gaps (seq: common/seq_gaps.hpp).
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler,
                  int queue_capacity = 0);
