@@ -18,10 +18,10 @@
 #include "gpilot/tracker_init_t.hpp"
 #include "gpilot/user_track_t.hpp"
 
-namespace {
+namespace gpilot {
 
-gpilot::user_track_t to_message(const gpilot::TrackOutput& t, const gpilot::image_t& frame) {
-  gpilot::user_track_t m{};
+user_track_t to_message(const TrackOutput& t, const image_t& frame) {
+  user_track_t m{};
   m.utime = frame.utime;
   m.seq = frame.seq;
   m.status = static_cast<int8_t>(t.status);
@@ -42,10 +42,6 @@ gpilot::user_track_t to_message(const gpilot::TrackOutput& t, const gpilot::imag
   m.image_height = frame.height;
   return m;
 }
-
-}  // namespace
-
-namespace gpilot {
 
 std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node) {
   struct State {

@@ -6,9 +6,16 @@
 
 #include "bus_node.hpp"
 #include "config.hpp"
+#include "gpilot/image_t.hpp"
+#include "gpilot/user_track_t.hpp"
+#include "user_tracker.hpp"
 
 namespace gpilot {
 
 std::shared_ptr<void> start_tracker_service(const Config& config, BusNode& node);
+
+// The core's output for a frame as gpilot-tracker publishes it on USER_TRACK (utime, seq and size from the
+// frame's message; its pixels are not read). Also the tracker fuzz target, which checks it.
+user_track_t to_message(const TrackOutput& t, const image_t& frame);
 
 }  // namespace gpilot

@@ -9,29 +9,16 @@
 #include "fuzz_input.hpp"
 #include "message_checks.hpp"
 #include "stage_frames.hpp"
+#include "tracker_service.hpp"
 #include "user_tracker.hpp"
 
 namespace {
 
-// The same fields gpilot-tracker publishes (tracker_service.cpp's to_message).
-gpilot::user_track_t published(const gpilot::TrackOutput& t, const cv::Mat& frame) {
-  gpilot::user_track_t m{};
-  m.status = static_cast<int8_t>(t.status);
-  m.box[0] = static_cast<float>(t.box.x);
-  m.box[1] = static_cast<float>(t.box.y);
-  m.box[2] = static_cast<float>(t.box.width);
-  m.box[3] = static_cast<float>(t.box.height);
-  m.confidence = static_cast<float>(t.confidence);
-  if (t.face) {
-    m.face_box[0] = static_cast<float>(t.face->x);
-    m.face_box[1] = static_cast<float>(t.face->y);
-    m.face_box[2] = static_cast<float>(t.face->width);
-    m.face_box[3] = static_cast<float>(t.face->height);
-  }
-  m.init_source = static_cast<int8_t>(t.init);
-  m.track_id = t.track_id;
-  m.image_width = frame.cols;
-  m.image_height = frame.rows;
+// The frame's message as far as USER_TRACK copies it (its size; no pixels).
+gpilot::image_t header_of(const cv::Mat& frame) {
+  gpilot::image_t m{};
+  m.width = frame.cols;
+  m.height = frame.rows;
   return m;
 }
 
@@ -78,7 +65,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       } catch (const std::invalid_argument&) {
         continue;  // the service rejects the frame and the track is unchanged
       }
-      const std::string why = gpilot::check_message(published(out, frame));
+      const std::string why = gpilot::check_message(gpilot::to_message(out, header_of(frame)));
       if (!why.empty()) gpilot::fuzz::fail("the tracker published a USER_TRACK that is rejected: " + why);
     }
   }
