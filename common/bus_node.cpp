@@ -1,4 +1,5 @@
 #include "bus_node.hpp"
+#include "log.hpp"
 
 #include <atomic>
 #include <csignal>
@@ -79,11 +80,9 @@ BusNode::BusNode(std::string name, const std::string& url, const BusParams& para
   const int64_t asked = recv_buf_size_of(url_);
   const int64_t rmem_max = read_rmem_max();
   if (asked > 0 && rmem_max >= 0 && rmem_max < asked)
-    std::fprintf(stderr,
-                 "%s: warning: LCM asked for a %lld-byte receive buffer but net.core.rmem_max is %lld; large "
-                 "images will be dropped. Raise it: sysctl -w net.core.rmem_max=%lld\n",
-                 name_.c_str(), static_cast<long long>(asked), static_cast<long long>(rmem_max),
-                 static_cast<long long>(asked));
+    log_warn("LCM asked for a %lld-byte receive buffer but net.core.rmem_max is %lld; large images will be "
+             "dropped. Raise it: sysctl -w net.core.rmem_max=%lld",
+             static_cast<long long>(asked), static_cast<long long>(rmem_max), static_cast<long long>(asked));
   install_signal_handlers();
   stats_.set_state(health_t::STATE_STARTING, "");
 }

@@ -15,6 +15,7 @@
 #include "flight_messages.hpp"
 #include "mavlink/offboard_loss.hpp"
 #include "bus_key.hpp"
+#include "log.hpp"
 #include "mavlink/session.hpp"
 #include "mavlink/udp_link.hpp"
 #include "quadrotor_sim.hpp"
@@ -128,14 +129,14 @@ class FlightService {
     using A = mavlink::EngageGate::Action;
     if (a == A::Request) link_->send(session_->param_request_read(gate_->param()));
     if (a == A::Engage) {
-      std::fprintf(stderr, "gpilot-flight: the autopilot's %s is %.2f s (<= %.2f): engaging\n", gate_->param().c_str(),
-                   gate_->last_value(), fp_.max_autopilot_loss_s);
+      log_info("the autopilot's %s is %.2f s (<= %.2f): engaging", gate_->param().c_str(), gate_->last_value(),
+               fp_.max_autopilot_loss_s);
       refused_.reset();
       apply_control(pending_engage_, to_core(pending_engage_));
     }
     if (a == A::Refuse) {
       const std::string why = "refusing to engage: " + gate_->why();
-      std::fprintf(stderr, "gpilot-flight: %s\n", why.c_str());
+      log_warn("%s", why.c_str());
       refused_ = to_core(pending_engage_);
       // An ENGAGE while engaged re-reads the parameter too: changed on the autopilot since, the answer now
       // stands, and the vehicle hovers (as a DISENGAGE would leave it).

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bus_node.hpp"
+#include "log.hpp"
 #include "service_cli.hpp"
 
 int main(int argc, char** argv) {
@@ -28,12 +29,11 @@ int main(int argc, char** argv) {
         {"land", flight_control_t::COMMAND_LAND},     {"disarm", flight_control_t::COMMAND_DISARM}};
     const auto it = kCommands.find(command);
     if (it == kCommands.end()) {
-      std::fprintf(stderr, "gpilot-ctl: unknown command '%s' (engage|disengage|arm|takeoff|land|disarm)\n",
-                   command.c_str());
+      log_error("unknown command '%s' (engage|disengage|arm|takeoff|land|disarm)", command.c_str());
       return 2;
     }
     if (it->second == flight_control_t::COMMAND_TAKEOFF && !(altitude > 0.0f)) {
-      std::fprintf(stderr, "gpilot-ctl: --altitude must be positive\n");
+      log_error("--altitude must be positive");
       return 2;
     }
     flight_control_t m{};

@@ -20,6 +20,7 @@
 #include "replay_pacing.hpp"
 #include "hands/hands_service.hpp"
 #include "config_schema.hpp"
+#include "log.hpp"
 #include "service_cli.hpp"
 #include "tracker/tracker_service.hpp"
 
@@ -124,14 +125,13 @@ int main(int argc, char** argv) {
       if (it == logged_yaml.end()) {
         stage_config.emplace(s, config);
         if (!cli.config_given())
-          std::fprintf(stderr, "gpilot-replay: %s: no CONFIG of gpilot-%s in the log: the built-in defaults (--config to choose)\n",
-                       s.c_str(), s.c_str());
+          log_warn("%s: no CONFIG of gpilot-%s in the log: the built-in defaults (--config to choose)", s.c_str(), s.c_str());
         continue;
       }
       Config logged = Config::from_string(it->second, "the CONFIG of gpilot-" + s + " in " + in_path);
       validate_config(logged);
       stage_config.emplace(s, std::move(logged));
-      std::fprintf(stderr, "gpilot-replay: %s runs with the config gpilot-%s published in the log\n", s.c_str(), s.c_str());
+      log_info("%s runs with the config gpilot-%s published in the log", s.c_str(), s.c_str());
     }
     lcm::LogFile in(in_path, "r");
     if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
