@@ -46,14 +46,22 @@ int64_t recv_buf_size_of(const std::string& url) {
   return 0;
 }
 
+namespace {
+
+// A bus between processes (udpm://, udp://), not one inside this process or a file (memq://, file://).
+bool is_network_url(const std::string& url) { return url.rfind("udpm://", 0) == 0 || url.rfind("udp://", 0) == 0; }
+
+}  // namespace
+
 bool url_leaves_host(const std::string& url) {
-  if (url.rfind("udpm://", 0) != 0 && url.rfind("udp://", 0) != 0) return false;  // memq://, file://
+  if (!is_network_url(url)) return false;
   static const std::regex ttl("[?&]ttl=([0-9]+)");
   std::smatch m;
   return std::regex_search(url, m, ttl) && std::stoll(m[1].str()) > 0;  // LCM's default ttl is 0
 }
 
-BusNode::BusNode(std::string name, const std::string& url, const BusParams& params) : name_(std::move(name)), url_(url) {
+BusNode::BusNode(std::string name, const std::string& url, const BusParams& params)
+    : name_(std::move(name)), url_(url), network_bus_(is_network_url(url)) {
   std::string key_file = params.key_file;
   if (const char* env = std::getenv("GPILOT_BUS_KEY"); env && *env) key_file = env;
   const int64_t window = seconds_to_utime(params.time_window_s);
@@ -71,8 +79,7 @@ BusNode::BusNode(std::string name, const std::string& url, const BusParams& para
     throw BusError(name_ + ": '" + url_ + "' reaches other hosts (ttl > 0) and no bus key is set: anyone on the "
                    "network could fly the drone. Make a key with gpilot-keygen FILE, install the same file on the "
                    "drone and the ground station, and set bus.key_file (or GPILOT_BUS_KEY=FILE)");
-  if (url_.rfind("udpm://", 0) == 0 || url_.rfind("udp://", 0) == 0) streams_ = std::make_unique<StreamGuard>(window);
-  else replay_streams_window_ = window;
+  streams_ = std::make_unique<StreamGuard>(window);
   lcm_ = std::make_unique<lcm::LCM>(url_);
   if (!lcm_->good())
     throw BusError(name_ + ": cannot start LCM on '" + url_ +
@@ -112,7 +119,6 @@ BusNode::Opened BusNode::open(const std::string& channel, const lcm::ReceiveBuff
 }
 
 std::string BusNode::check_stream(const std::string& stream, int64_t utime, int64_t seq, int64_t arrival_utime) {
-  if (!streams_) streams_ = std::make_unique<StreamGuard>(replay_streams_window_);  // replay: on the log's clock
   return streams_->admit(stream, utime, seq, arrival_utime);
 }
 

@@ -198,8 +198,7 @@ class BusNode {
   int64_t log_time_ = -1;
   std::unique_ptr<BusSigner> signer_;
   std::unique_ptr<BusVerifier> verifier_;
-  std::unique_ptr<StreamGuard> streams_;  // null on in-process buses (memq://, file://) outside replay
-  int64_t replay_streams_window_ = 0;
+  std::unique_ptr<StreamGuard> streams_;  // applied on a network bus, and in replay (on the log's clock)
   struct LastOpened {                     // one datagram dispatched to several subscriptions: one verdict
     const void* data = nullptr;
     int64_t recv_utime = 0;
@@ -209,6 +208,7 @@ class BusNode {
 
   std::string name_;
   std::string url_;
+  bool network_bus_;  // udpm:// or udp://: other processes' messages
   std::unique_ptr<lcm::LCM> lcm_;
   StageStats stats_;
   std::vector<std::unique_ptr<SubscriptionBase>> subs_;
@@ -237,7 +237,7 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   if (why.empty()) why = decode_exactly(opened.data, opened.size, msg);
   if (why.empty()) why = check_message(msg);
   const int64_t arrival = node.arrival_time(*rbuf);
-  if (why.empty() && (node.streams_ || node.log_time_ >= 0))
+  if (why.empty() && (node.network_bus_ || node.log_time_ >= 0))
     why = node.check_stream(channel + "/" + std::to_string(opened.sender) + "/" + stream_of(msg), msg.utime, msg.seq,
                             arrival);
   if (!why.empty()) {
