@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -37,7 +38,8 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
 
   HandsScoreboard board;
   int32_t track_id = 0;
-  size_t image_no = 0;
+  size_t image_no = 0, images_with_people = 0, images_loaded = 0;
+  std::string first_missing;
   for (const CocoImage& im : coco.images()) {
     ++image_no;
     std::vector<const CocoAnnotation*> people;
@@ -46,6 +48,9 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
     if (people.empty()) continue;
     const std::string path = (std::filesystem::path(o.images_dir) / im.file_name).string();
     const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+    ++images_with_people;
+    if (!bgr.empty()) ++images_loaded;
+    else if (first_missing.empty()) first_missing = path;
     if (o.progress)
       std::fprintf(stderr, "[%zu/%zu] %s: %zu persons%s\n", image_no, coco.images().size(), im.file_name.c_str(), people.size(),
                    bgr.empty() ? " (image does not load: skipped)" : "");
@@ -113,6 +118,10 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
       }
     }
   }
+  // Not one image: the wrong folder, not a data set whose every person is unreadable.
+  if (images_with_people > 0 && images_loaded == 0)
+    throw std::runtime_error("none of the " + std::to_string(images_with_people) + " images with persons in " + o.annotations +
+                             " loads from " + o.images_dir + " (first: " + first_missing + ")");
   return board;
 }
 

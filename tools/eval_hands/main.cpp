@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
                  "                    window of that box, or none;\n"
                  "  --box face: the body box the tracker would make (body_from_face, section tracker) from the Haar face\n"
                  "              found in the person's head region (nose/eyes/ears); no face: counted, not scored.\n"
+                 "  --box keypoints: the same from the face box the nose/eyes/ears keypoints span (the hands stage apart\n"
+                 "              from face finding: a tracker that never misses a face).\n"
                  "  The face goes to the stage too: with hands.box_from_face on, the stage itself works on the box the face\n"
                  "  implies (--set hands.box_from_face=false keeps the annotation box in --box annotation).\n"
                  "  Scores: OUT found and its angle error (stage hand - p_uc vs truth wrist - p_uc, p_uc = the stage's own\n"
@@ -48,8 +50,8 @@ int main(int argc, char** argv) {
   auto* pngs_opt = app.add_option("--pngs", syn.pngs, "synthetic mode: how many annotated PNGs at most")->check(CLI::NonNegativeNumber);
   auto* coco_opt = app.add_option("--coco", coco.annotations, "COCO person-keypoints JSON: real-photo mode")->check(CLI::ExistingFile);
   auto* images_opt = app.add_option("--images", coco.images_dir, "COCO mode: folder of the images")->check(CLI::ExistingDirectory);
-  auto* box_opt = app.add_option("--box", box, "COCO mode: user box from the 'annotation' bbox or from the 'face' (as the tracker)")
-                      ->check(CLI::IsMember({"annotation", "face"}));
+  auto* box_opt = app.add_option("--box", box, "COCO mode: user box from the 'annotation' bbox, from the Haar 'face' (as the tracker) or the 'keypoints' face")
+                      ->check(CLI::IsMember({"annotation", "face", "keypoints"}));
   app.add_option("--png-dir", png_dir, "folder for annotated PNGs (synthetic default eval_hands_png; COCO: none unless given; '' = none)");
   app.add_option("--csv", csv_path, "write one line per frame (synthetic) or per person (COCO) to this file");
   app.add_flag("--json", json, "print one JSON object on stdout");
@@ -66,24 +68,25 @@ int main(int argc, char** argv) {
       if (png_given) syn.png_dir = png_dir;
       return run_synthetic_eval(syn, config);
     }
-    coco.box = box == "face" ? BoxMode::Face : BoxMode::Annotation;
+    coco.box = box == "face" ? BoxMode::Face : box == "keypoints" ? BoxMode::Keypoints : BoxMode::Annotation;
     coco.csv_path = csv_path;
     coco.png_dir = png_dir;
     const auto hands = config.section<HandsParams>("hands");
+    const std::string box_description = coco.box == BoxMode::Face        ? "body_from_face of the Haar face on the person's head keypoints"
+                                        : coco.box == BoxMode::Keypoints ? "body_from_face of the face box the head keypoints span"
+                                                                         : "COCO annotation bbox";
     const HandsScoreboard board = run_coco_eval(coco, hands, config.section<TrackerParams>("tracker"));
     if (json) {
       const nlohmann::json context = {{"mode", "coco"},
                                       {"annotations", coco.annotations},
                                       {"images", coco.images_dir},
                                       {"box", box},
-                                      {"user_box", box == "face" ? "body_from_face(Haar face on the person's head keypoints)"
-                                                                 : "COCO annotation bbox"},
+                                      {"user_box", box_description},
                                       {"hands_box_from_face", hands.box_from_face},
                                       {"truth", "keypoint_truth rules (gpilot-eval-hands --help)"}};
       std::cout << board.to_json(context).dump() << std::endl;
     } else {
-      board.print_table(stdout, "COCO persons of " + coco.annotations + ", box: " + box +
-                                    (box == "face" ? " (body_from_face of the Haar face on the person)" : " (COCO annotation bbox)"));
+      board.print_table(stdout, "COCO persons of " + coco.annotations + ", box: " + box + " (" + box_description + ")");
       if (!csv_path.empty()) std::printf("per-person CSV              %s\n", csv_path.c_str());
       if (!png_dir.empty()) std::printf("annotated PNGs              %s\n", png_dir.c_str());
     }

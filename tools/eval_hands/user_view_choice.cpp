@@ -20,7 +20,13 @@ cv::Rect2f to_float(const cv::Rect2d& r) {
 
 }  // namespace
 
-const char* box_mode_name(BoxMode m) { return m == BoxMode::Annotation ? "annotation" : "face"; }
+const char* box_mode_name(BoxMode m) {
+  switch (m) {
+    case BoxMode::Annotation: return "annotation";
+    case BoxMode::Face: return "face";
+    default: return "keypoints";
+  }
+}
 
 UserViewChooser::UserViewChooser(const TrackerParams& tracker, BoxMode mode) : tracker_(tracker), mode_(mode), faces_(tracker) {}
 
@@ -37,6 +43,12 @@ ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotat
   }
   if (!truth.face_box) {
     c.note = "no face keypoints";
+    return c;
+  }
+  if (mode_ == BoxMode::Keypoints) {
+    c.face = *truth.face_box;
+    c.search_window = to_pixels(*truth.face_box, bgr.size());
+    c.view = UserView{to_float(body_from_face(cv::Rect2d(*truth.face_box), tracker_)), c.face, track_id};
     return c;
   }
   c.search_window = to_pixels(grown(*truth.face_box, 2.0f), bgr.size());

@@ -5,6 +5,8 @@
 //               head region spanned by the nose/eyes/ears keypoints (their face box grown 2x), accepted if
 //               its centre lies in that face box grown 1.5x; body box = body_from_face(face, tracker params)
 //               (unclipped, as the tracker starts a track). No face: no view ("no face").
+//   keypoints:  as face, with the face box the nose/eyes/ears keypoints span (keypoint_face_box) in place of
+//               the cascade's: the hands stage apart from face finding, as if the tracker never missed a face.
 #pragma once
 
 #include <optional>
@@ -19,8 +21,8 @@
 
 namespace gpilot {
 
-enum class BoxMode { Annotation, Face };
-const char* box_mode_name(BoxMode m);  // "annotation", "face"
+enum class BoxMode { Annotation, Face, Keypoints };
+const char* box_mode_name(BoxMode m);  // "annotation", "face", "keypoints"
 
 struct ChosenView {
   std::optional<UserView> view;    //!< none: no face in face mode (the person is not run)
