@@ -17,9 +17,10 @@
 
 #include "config.hpp"
 #include "decide_eval.hpp"
+#include "json_out.hpp"
+#include "log.hpp"
 #include "log_reader.hpp"
 #include "overlay.hpp"
-#include "run_summary.hpp"
 #include "service_cli.hpp"
 
 namespace gpilot {
@@ -79,27 +80,34 @@ struct Result {
   bool live = false;                       // a live run's recorded commands, not a configuration re-run
 };
 
-std::string num(double v, const char* fmt = "%.3f") {
-  if (!std::isfinite(v)) return "null";
+// The plot's axis labels.
+std::string num(double v, const char* fmt) {
   char b[32];
   std::snprintf(b, sizeof b, fmt, v);
   return b;
 }
 
-std::string score_json(const Score& s) {
+// One Score as --json writes it, with the digits it always had (s and minutes: 3, percent: 2); no reaction -> null.
+json score_json(const Score& s) {
   const double pct_old = s.frames ? 100.0 * s.old_frames / s.frames : 0.0;
   const double pct_wrong = s.frames ? 100.0 * s.wrong_frames / s.frames : 0.0;
-  return "{\"frames\": " + std::to_string(s.frames) + ", \"minutes\": " + num(s.minutes) +
-         ", \"changes\": " + std::to_string(s.changes) + ", \"missed\": " + std::to_string(s.missed) +
-         ", \"reaction_median_s\": " + num(s.reaction_median_s()) + ", \"reaction_max_s\": " + num(s.reaction_max_s()) +
-         ", \"reaction_median_frames\": " + std::to_string(s.reaction_median_frames()) +
-         ", \"reaction_max_frames\": " + std::to_string(s.reaction_max_frames()) +
-         ", \"old_frames\": " + std::to_string(s.old_frames) + ", \"old_percent\": " + num(pct_old, "%.2f") +
-         ", \"wrong_frames\": " + std::to_string(s.wrong_frames) + ", \"wrong_percent\": " + num(pct_wrong, "%.2f") +
-         ", \"false_at_rest\": " + std::to_string(s.false_at_rest) +
-         ", \"false_at_rest_frames\": " + std::to_string(s.false_at_rest_frames) +
-         ", \"confused\": " + std::to_string(s.confused) + ", \"confused_frames\": " + std::to_string(s.confused_frames) +
-         ", \"false_per_minute\": " + num(s.false_per_minute()) + "}";
+  return {{"frames", s.frames},
+          {"minutes", rounded(s.minutes, 3)},
+          {"changes", s.changes},
+          {"missed", s.missed},
+          {"reaction_median_s", rounded(s.reaction_median_s(), 3)},
+          {"reaction_max_s", rounded(s.reaction_max_s(), 3)},
+          {"reaction_median_frames", s.reaction_median_frames()},
+          {"reaction_max_frames", s.reaction_max_frames()},
+          {"old_frames", s.old_frames},
+          {"old_percent", rounded(pct_old, 2)},
+          {"wrong_frames", s.wrong_frames},
+          {"wrong_percent", rounded(pct_wrong, 2)},
+          {"false_at_rest", s.false_at_rest},
+          {"false_at_rest_frames", s.false_at_rest_frames},
+          {"confused", s.confused},
+          {"confused_frames", s.confused_frames},
+          {"false_per_minute", rounded(s.false_per_minute(), 3)}};
 }
 
 std::string row(const std::string& name, const Score& s) {
@@ -192,13 +200,13 @@ int main(int argc, char** argv) {
                  "FLIGHT_SETPOINT as the first row (\"as flown\": the setpoint's mode when the next frame was logged).");
   std::vector<std::string> logs, sweeps, variants;
   std::string plot_file;
-  bool json = false, no_paper = false, do_trace = false, list_changes = false;
+  bool print_json = false, no_paper = false, do_trace = false, list_changes = false;
   ScoreRules rules;
   cli.app().add_option("logs", logs, "LCM logs with HAND_OBS and GROUND_TRUTH")->required();
   cli.app().add_option("--sweep", sweeps, "section.key=v1,v2,...: one configuration per value (several: every combination)");
   cli.app().add_option("--variant", variants, "\"NAME section.key=v section.key=v ...\": a named configuration");
   cli.app().add_flag("--no-paper", no_paper, "leave out the paper's Alg. 3 (rule paper, 60/30/30, 600 ms spacing)");
-  cli.app().add_flag("--json", json, "one JSON object on stdout instead of the table");
+  cli.app().add_flag("--json", print_json, "one JSON object on stdout instead of the table");
   cli.app().add_option("--plot", plot_file, "write a PNG of false commands per minute against median reaction time");
   cli.app().add_flag("--trace", do_trace, "print every frame of the first log for the first configuration, then stop");
   cli.app().add_flag("--changes", list_changes, "list every true change with its reaction (per configuration and log)");
@@ -237,11 +245,11 @@ int main(int argc, char** argv) {
     const auto base_flight = config.section<FlightParams>("flight");
     std::vector<EvalLog> data;
     for (const auto& path : logs) {
-      std::fprintf(stderr, "%s: reading %s\n", kName, path.c_str());
+      log_info("reading %s", path.c_str());
       data.push_back(read_eval_log(path));
       if (data.back().hand_obs_without_truth)
-        std::fprintf(stderr, "%s: %s: %lld HAND_OBS without GROUND_TRUTH left out\n", kName, path.c_str(),
-                     static_cast<long long>(data.back().hand_obs_without_truth));
+        log_warn("%s: %lld HAND_OBS without GROUND_TRUTH left out", path.c_str(),
+                 static_cast<long long>(data.back().hand_obs_without_truth));
     }
     // A live run's own GESTURE_CMD and FLIGHT_SETPOINT, when every log has them: measured, not re-run.
     std::vector<Result> results;
@@ -283,25 +291,26 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "\n");
     if (!plot_file.empty()) plot(plot_file, results);
 
-    if (json) {
-      std::string j = "{\n  \"logs\": [";
-      for (size_t i = 0; i < logs.size(); ++i) j += (i ? ", " : "") + json_string(logs[i]);
-      j += "],\n  \"rules\": {\"turn_deg\": " + num(rules.turn_deg) + ", \"fine_angle_deg\": " + num(rules.fine_angle_deg) +
-           ", \"min_turn_s\": " + num(rules.min_turn_s) +
-           "},\n  \"configurations\": [";
-      for (size_t i = 0; i < results.size(); ++i) {
-        const auto& r = results[i];
-        j += std::string(i ? "," : "") + "\n    {\"name\": " + json_string(r.variant.name) + ", \"sets\": [";
-        for (size_t k = 0; k < r.variant.sets.size(); ++k) j += (k ? ", " : "") + json_string(r.variant.sets[k]);
-        j += "],\n     \"gesture_cmd\": " + score_json(r.decided) + ",\n     \"flown\": " + score_json(r.flown) +
-             ",\n     \"per_log\": [";
+    if (print_json) {
+      json out = {{"logs", logs},
+                          {"rules",
+                           {{"turn_deg", rounded(rules.turn_deg, 3)},
+                            {"fine_angle_deg", rounded(rules.fine_angle_deg, 3)},
+                            {"min_turn_s", rounded(rules.min_turn_s, 3)}}},
+                          {"configurations", json::array()}};
+      for (const auto& r : results) {
+        json per_log = json::array();
         for (size_t k = 0; k < logs.size(); ++k)
-          j += std::string(k ? "," : "") + "\n       {\"log\": " + json_string(logs[k]) + ", \"gesture_cmd\": " +
-               score_json(r.decided_per_log[k]) + ", \"flown\": " + score_json(r.flown_per_log[k]) + "}";
-        j += "]}";
+          per_log.push_back({{"log", logs[k]},
+                             {"gesture_cmd", score_json(r.decided_per_log[k])},
+                             {"flown", score_json(r.flown_per_log[k])}});
+        out["configurations"].push_back({{"name", r.variant.name},
+                                         {"sets", r.variant.sets},
+                                         {"gesture_cmd", score_json(r.decided)},
+                                         {"flown", score_json(r.flown)},
+                                         {"per_log", per_log}});
       }
-      j += "\n  ]\n}\n";
-      std::fputs(j.c_str(), stdout);
+      std::printf("%s\n", out.dump().c_str());
       return 0;
     }
     std::printf("%-26s %-11s %-11s %-7s %-5s %-6s %-6s %-4s %-4s %-6s\n", "configuration", "median s(fr)", "max s(fr)",

@@ -19,27 +19,20 @@ namespace {
 
 constexpr const char* kName = "gpilot-report";
 
-std::string json_list(const std::vector<std::string>& items) {
-  std::string j = "[";
-  for (size_t i = 0; i < items.size(); ++i) j += (i ? ", " : "") + gpilot::json_string(items[i]);
-  return j + "]";
-}
-
-int report(const std::string& log_path, const std::string& out_dir, bool json, int buffer_size) {
+int report(const std::string& log_path, const std::string& out_dir, bool print_json, int buffer_size) {
   using namespace gpilot;
   const LogAnalysis a = analyse_log(log_path, buffer_size, kName);
   for (const auto& w : a.warnings) gpilot::log_warn("%s", w.c_str());
 
   const Summary& s = a.summary;
-  std::string rejected = "{";
-  for (const auto& [ch, n] : a.rejected)
-    rejected += (rejected.size() > 1 ? ", " : "") + json_string(ch) + ": " + std::to_string(n);
-  rejected += "}";
-  const std::string j = summary_json(s, {{"log", json_string(log_path)},
-                                         {"log_events", std::to_string(a.events)},
-                                         {"buffer_size", std::to_string(buffer_size)},
-                                         {"rejected_messages", rejected},
-                                         {"warnings", json_list(a.warnings)}});
+  // Indented, one member a line: summary.json is read by people and by deploy/run's line-wise sed (logger_lost);
+  // --json prints the same text.
+  const std::string j = summary_json(s, {{"log", log_path},
+                                         {"log_events", a.events},
+                                         {"buffer_size", buffer_size},
+                                         {"rejected_messages", a.rejected},
+                                         {"warnings", a.warnings}})
+                            .dump(2) + "\n";
   if (!out_dir.empty()) {
     namespace fs = std::filesystem;
     fs::create_directories(out_dir);
@@ -53,7 +46,7 @@ int report(const std::string& log_path, const std::string& out_dir, bool json, i
     if (!std::ifstream(json_path)) throw std::runtime_error("cannot write " + json_path);
     gpilot::log_info("wrote %s and %s", json_path.c_str(), png.c_str());
   }
-  std::fputs(json ? j.c_str() : summary_table(s).c_str(), stdout);
+  std::fputs(print_json ? j.c_str() : summary_table(s).c_str(), stdout);
   return 0;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "overlay.hpp"
 #include "stage_stats.hpp"
@@ -39,42 +40,20 @@ const char* health_state_name(int s) {
 
 bool valid_mode(int m) { return m >= 0 && m < kModes; }
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
+// The JSON's numbers: six significant digits, as the summary has always written them ("%.6g"); a
+// non-finite number as null. The double parsed back from those digits dumps as the same digits.
+json sig6(double v) {
+  if (!std::isfinite(v)) return nullptr;
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  return std::strtod(buf, nullptr);
 }
-std::string num(int64_t v) { return std::to_string(v); }
 
-std::string latency_json(const LatencyStats& l) {
-  return "{\"n\": " + num(l.n) + ", \"median\": " + (l.n ? num(l.median_ms) : "null") +
-         ", \"p95\": " + (l.n ? num(l.p95_ms) : "null") + "}";
+json latency_json(const LatencyStats& l) {
+  return {{"n", l.n}, {"median", l.n ? sig6(l.median_ms) : json(nullptr)}, {"p95", l.n ? sig6(l.p95_ms) : json(nullptr)}};
 }
 
 }  // namespace
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += static_cast<char>(c);
-        }
-    }
-  }
-  return out + "\"";
-}
 
 RunAnalyzer::RunAnalyzer(int buffer_size) : buffer_size_(std::max(1, buffer_size)) {}
 
@@ -258,94 +237,87 @@ Summary RunAnalyzer::summary() const {
   return s;
 }
 
-std::string summary_json(const Summary& s, const std::vector<std::pair<std::string, std::string>>& extra) {
-  std::string j = "{\n";
-  for (const auto& [k, v] : extra) j += "  " + json_string(k) + ": " + v + ",\n";
-  j += "  \"frames\": " + num(s.frames) + ",\n";
-  j += "  \"duration_s\": " + num(s.duration_s) + ",\n";
-  j += "  \"camera_hz\": " + num(s.camera_hz) + ",\n";
-  j += "  \"commands\": {\"total\": " + num(s.commands) + ", \"by_mode\": {";
-  for (int m = 0; m < kModes; ++m)
-    j += std::string(m ? ", " : "") + json_string(mode_name(m)) + ": " + num(s.commands_by_mode[static_cast<size_t>(m)]);
-  j += "}},\n";
-  j += "  \"track\": {\"frames\": " + num(s.track_frames);
-  for (int st = 0; st < 3; ++st)
-    j += ", " + json_string(track_status_name(st)) + ": " + num(s.track_by_status[static_cast<size_t>(st)]);
-  j += "},\n";
-  j += "  \"stages\": {";
-  for (size_t i = 0; i < s.stages.size(); ++i) {
-    const auto& h = s.stages[i];
-    j += std::string(i ? "," : "") + "\n    " + json_string(h.name) + ": {\"reports\": " + num(h.reports) +
-         ", \"rate_out_hz_last\": " + num(h.rate_out_last_hz) + ", \"rate_out_hz_median\": " +
-         num(h.rate_out_median_hz) + ", \"processing_ms_p50\": " + num(h.processing_p50_ms) +
-         ", \"processing_ms_p99\": " + num(h.processing_p99_ms) + ", \"processing_ms_p99_max\": " +
-         num(h.processing_p99_max_ms) + ", \"messages_in\": " + num(h.messages_in) + ", \"messages_out\": " +
-         num(h.messages_out) + ", \"rejected\": " + num(h.rejected) + ", \"dropped\": " + num(h.dropped) +
-         ", \"last_state\": " + json_string(health_state_name(h.last_state)) +
-         ", \"last_reject_reason\": " + json_string(h.last_reject_reason) + "}";
-  }
-  j += s.stages.empty() ? "},\n" : "\n  },\n";
-  j += "  \"latency_ms\": {\n";
-  j += "    \"frame_to_gesture_cmd\": " + latency_json(s.latency_cmd) + ",\n";
-  j += "    \"frame_to_flight_setpoint\": " + latency_json(s.latency_setpoint) + ",\n";
-  j += "    \"camera_receipt_to_gesture_cmd\": " + latency_json(s.pipeline_cmd) + ",\n";
-  j += "    \"camera_receipt_to_flight_setpoint\": " + latency_json(s.pipeline_setpoint) + ",\n";
-  j += "    \"unmatched_commands\": " + num(s.unmatched_commands) + ",\n";
-  j += "    \"definition\": " +
-       json_string("receipt time in the log minus the frame's utime (frame_to_*) or minus the CAMERA frame's receipt "
-                   "time (camera_receipt_to_*), matched by seq; FLIGHT_SETPOINT: the first one of each seq") +
-       "\n  },\n";
+json summary_json(const Summary& s, const json& extra) {
+  json j = json::object();
+  for (const auto& [k, v] : extra.items()) j[k] = v;
+  j["frames"] = s.frames;
+  j["duration_s"] = sig6(s.duration_s);
+  j["camera_hz"] = sig6(s.camera_hz);
+  json by_mode = json::object();
+  for (int m = 0; m < kModes; ++m) by_mode[mode_name(m)] = s.commands_by_mode[static_cast<size_t>(m)];
+  j["commands"] = {{"total", s.commands}, {"by_mode", by_mode}};
+  json track = {{"frames", s.track_frames}};
+  for (int st = 0; st < 3; ++st) track[track_status_name(st)] = s.track_by_status[static_cast<size_t>(st)];
+  j["track"] = track;
+  json stages = json::object();
+  for (const auto& h : s.stages)
+    stages[h.name] = {{"reports", h.reports},
+                      {"rate_out_hz_last", sig6(h.rate_out_last_hz)},
+                      {"rate_out_hz_median", sig6(h.rate_out_median_hz)},
+                      {"processing_ms_p50", sig6(h.processing_p50_ms)},
+                      {"processing_ms_p99", sig6(h.processing_p99_ms)},
+                      {"processing_ms_p99_max", sig6(h.processing_p99_max_ms)},
+                      {"messages_in", h.messages_in},
+                      {"messages_out", h.messages_out},
+                      {"rejected", h.rejected},
+                      {"dropped", h.dropped},
+                      {"last_state", health_state_name(h.last_state)},
+                      {"last_reject_reason", h.last_reject_reason}};
+  j["stages"] = stages;
+  j["latency_ms"] = {
+      {"frame_to_gesture_cmd", latency_json(s.latency_cmd)},
+      {"frame_to_flight_setpoint", latency_json(s.latency_setpoint)},
+      {"camera_receipt_to_gesture_cmd", latency_json(s.pipeline_cmd)},
+      {"camera_receipt_to_flight_setpoint", latency_json(s.pipeline_setpoint)},
+      {"unmatched_commands", s.unmatched_commands},
+      {"definition",
+       "receipt time in the log minus the frame's utime (frame_to_*) or minus the CAMERA frame's receipt time "
+       "(camera_receipt_to_*), matched by seq; FLIGHT_SETPOINT: the first one of each seq"}};
   const Accuracy& a = s.accuracy;
-  j += "  \"gesture_accuracy\": {\n";
-  j += "    \"accuracy\": " + (a.has_value() ? num(a.value()) : "null") + ",\n";
-  j += "    \"accuracy_percent\": " + (a.has_value() ? num(100.0 * a.value()) : "null") + ",\n";
-  j += "    \"correct\": " + num(a.correct) + ", \"evaluated\": " + num(a.evaluated) + ",\n";
-  j += "    \"truth_frames\": " + num(a.truth_frames) + ", \"frames_with_command\": " + num(a.frames_with_command) +
-       ", \"skipped_settling\": " + num(a.skipped_settling) + ",\n";
-  j += "    \"settle_frames\": " + num(static_cast<int64_t>(a.settle_frames)) + ",\n";
-  j += "    \"rule\": " + json_string(a.rule) + ",\n";
-  j += "    \"confusion\": {\"modes\": [";
-  for (int m = 0; m < kModes; ++m) j += std::string(m ? ", " : "") + json_string(mode_name(m));
-  j += "], \"rows_expected_columns_decided\": [";
-  for (int e = 0; e < kModes; ++e) {
-    j += std::string(e ? ", " : "") + "[";
-    for (int d = 0; d < kModes; ++d)
-      j += std::string(d ? ", " : "") + num(a.confusion[static_cast<size_t>(e)][static_cast<size_t>(d)]);
-    j += "]";
-  }
-  j += "]}\n  },\n";
+  json modes = json::array();
+  for (int m = 0; m < kModes; ++m) modes.push_back(mode_name(m));
+  j["gesture_accuracy"] = {{"accuracy", a.has_value() ? sig6(a.value()) : json(nullptr)},
+                           {"accuracy_percent", a.has_value() ? sig6(100.0 * a.value()) : json(nullptr)},
+                           {"correct", a.correct},
+                           {"evaluated", a.evaluated},
+                           {"truth_frames", a.truth_frames},
+                           {"frames_with_command", a.frames_with_command},
+                           {"skipped_settling", a.skipped_settling},
+                           {"settle_frames", a.settle_frames},
+                           {"rule", a.rule},
+                           {"confusion", {{"modes", modes}, {"rows_expected_columns_decided", a.confusion}}}};
   const Score& r = s.reaction;
-  j += "  \"gesture_reaction\": {\"changes\": " + num(static_cast<int64_t>(r.changes)) +
-       ", \"missed\": " + num(static_cast<int64_t>(r.missed)) +
-       ", \"median_s\": " + num(r.reaction_median_s()) + ", \"max_s\": " + num(r.reaction_max_s()) +
-       ", \"median_frames\": " + num(static_cast<int64_t>(r.reaction_median_frames())) +
-       ", \"max_frames\": " + num(static_cast<int64_t>(r.reaction_max_frames())) + ",\n";
-  j += "    \"frames\": " + num(r.frames) + ", \"old_command_frames\": " + num(r.old_frames) +
-       ", \"old_command_percent\": " + num(r.frames ? 100.0 * r.old_frames / r.frames : 0.0) +
-       ", \"wrong_frames\": " + num(r.wrong_frames) + ", \"false_at_rest\": " + num(static_cast<int64_t>(r.false_at_rest)) +
-       ", \"confused\": " + num(static_cast<int64_t>(r.confused)) + ",\n";
-  j += "    \"definition\": " +
-       json_string("every frame with GROUND_TRUTH, no settling skipped (gpilot-eval-decide's scoring): reaction from a "
-                   "true gesture change to the first GESTURE_CMD with the new command; old_command_frames: frames "
-                   "from each change to it; false_at_rest: a motion commanded while the user rests; confused: another "
-                   "motion than the one asked") +
-       "\n  },\n";
-  j += "  \"vehicle\": {\"states\": " + num(s.vehicle_states) + ", \"path_length_m\": " + num(s.path_length_m) + "},\n";
-  j += "  \"log_gaps\": {\n    \"logger_lost\": " + num(s.logger_lost()) + ",\n    \"channels\": {";
-  bool first_gap = true;
-  for (const auto& [channel, g] : s.gaps) {
-    j += std::string(first_gap ? "" : ",") + "\n      " + json_string(channel) + ": {\"messages\": " + num(g.messages) +
-         ", \"missing\": " + num(g.missing) + ", \"streams\": " + num(g.streams) +
-         ", \"a_gap_is\": " + json_string(g.counter ? "lost by the logger" : "skipped by a stage (HEALTH.dropped) or lost by the logger") + "}";
-    first_gap = false;
-  }
-  j += std::string(s.gaps.empty() ? "" : "\n    ") + "},\n";
-  j += "    \"definition\": " +
-       json_string("per channel, seq values skipped inside each publisher's stream (a seq going back starts a new "
-                   "stream); logger_lost sums the channels where every seq is one message sent (CAMERA, GROUND_TRUTH, "
-                   "VEHICLE_STATE, HEALTH per process)") +
-       "\n  }\n";
-  j += "}\n";
+  j["gesture_reaction"] = {
+      {"changes", r.changes},
+      {"missed", r.missed},
+      {"median_s", sig6(r.reaction_median_s())},
+      {"max_s", sig6(r.reaction_max_s())},
+      {"median_frames", r.reaction_median_frames()},
+      {"max_frames", r.reaction_max_frames()},
+      {"frames", r.frames},
+      {"old_command_frames", r.old_frames},
+      {"old_command_percent", sig6(r.frames ? 100.0 * r.old_frames / r.frames : 0.0)},
+      {"wrong_frames", r.wrong_frames},
+      {"false_at_rest", r.false_at_rest},
+      {"confused", r.confused},
+      {"definition",
+       "every frame with GROUND_TRUTH, no settling skipped (gpilot-eval-decide's scoring): reaction from a true "
+       "gesture change to the first GESTURE_CMD with the new command; old_command_frames: frames from each change to "
+       "it; false_at_rest: a motion commanded while the user rests; confused: another motion than the one asked"}};
+  j["vehicle"] = {{"states", s.vehicle_states}, {"path_length_m", sig6(s.path_length_m)}};
+  json channels = json::object();
+  for (const auto& [channel, g] : s.gaps)
+    channels[channel] = {{"messages", g.messages},
+                         {"missing", g.missing},
+                         {"streams", g.streams},
+                         {"a_gap_is", g.counter ? "lost by the logger"
+                                                : "skipped by a stage (HEALTH.dropped) or lost by the logger"}};
+  j["log_gaps"] = {{"logger_lost", s.logger_lost()},
+                   {"channels", channels},
+                   {"definition",
+                    "per channel, seq values skipped inside each publisher's stream (a seq going back starts a new "
+                    "stream); logger_lost sums the channels where every seq is one message sent (CAMERA, "
+                    "GROUND_TRUTH, VEHICLE_STATE, HEALTH per process)"}};
   return j;
 }
 

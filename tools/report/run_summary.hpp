@@ -20,6 +20,7 @@
 #include "gpilot/image_t.hpp"
 #include "gpilot/user_track_t.hpp"
 #include "gpilot/vehicle_state_t.hpp"
+#include "json_out.hpp"
 
 namespace gpilot {
 
@@ -148,12 +149,9 @@ class RunAnalyzer {
   std::map<std::pair<std::string, std::string>, int64_t> last_seq_;
 };
 
-// One JSON object; `extra` members (already JSON) are added at the top level (log file, warnings ...).
-std::string summary_json(const Summary& s, const std::vector<std::pair<std::string, std::string>>& extra = {});
+// One JSON object (common/json_out.hpp); `extra`'s members come first at the top level (log file, warnings ...).
+json summary_json(const Summary& s, const json& extra = json::object());
 // The human table.
 std::string summary_table(const Summary& s);
-
-// A JSON string literal of s (quotes and escapes).
-std::string json_string(const std::string& s);
 
 }  // namespace gpilot

@@ -103,7 +103,8 @@ TEST_F(RunSummaryTest, ReactionScoresEveryFrameJoinedBySeq) {
   EXPECT_EQ(s.reaction.false_at_rest, 6);
   EXPECT_EQ(s.reaction.false_at_rest_frames, 69);
   EXPECT_EQ(s.reaction.wrong_frames, 69);
-  EXPECT_NE(summary_json(s, {}).find("\"gesture_reaction\": {\"changes\": 0"), std::string::npos);
+  EXPECT_EQ(summary_json(s)["gesture_reaction"]["changes"], 0);
+  EXPECT_EQ(summary_json(s)["gesture_reaction"]["false_at_rest"], 6);
 }
 
 TEST_F(RunSummaryTest, NoTruthNoAccuracy) {
@@ -111,8 +112,9 @@ TEST_F(RunSummaryTest, NoTruthNoAccuracy) {
   const Summary s = analyse(run, 60);
   EXPECT_FALSE(s.accuracy.has_value());
   EXPECT_EQ(s.accuracy.truth_frames, 0);
-  const std::string j = summary_json(s);
-  EXPECT_NE(j.find("\"accuracy\": null"), std::string::npos);
+  const json j = summary_json(s);
+  EXPECT_TRUE(j["gesture_accuracy"]["accuracy"].is_null()) << j.dump(2);
+  EXPECT_TRUE(j["gesture_accuracy"]["accuracy_percent"].is_null());
 }
 
 TEST_F(RunSummaryTest, TrajectoryCarriesTheModeInForceAndTheUser) {
@@ -136,13 +138,16 @@ TEST_F(RunSummaryTest, TrajectoryCarriesTheModeInForceAndTheUser) {
 
 TEST(RunSummaryJson, IsOneObjectWithTheKeysTheLeadReads) {
   RunAnalyzer a(60);
-  const std::string j = summary_json(a.summary(), {{"log", json_string("a \"b\"\n")}});
-  EXPECT_EQ(j.front(), '{');
-  EXPECT_EQ(j.substr(j.size() - 2), "}\n");
-  for (const char* key : {"\"frames\"", "\"commands\"", "\"stages\"", "\"latency_ms\"", "\"gesture_accuracy\"",
-                          "\"accuracy\"", "\"rule\"", "\"confusion\"", "\"vehicle\""})
-    EXPECT_NE(j.find(key), std::string::npos) << key;
-  EXPECT_NE(j.find("\"log\": \"a \\\"b\\\"\\n\""), std::string::npos) << j;
+  const json j = summary_json(a.summary(), {{"log", "a \"b\"\n"}});
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.begin().key(), "log");  // the extra members come first
+  for (const char* key : {"frames", "commands", "stages", "latency_ms", "gesture_accuracy", "vehicle", "log_gaps"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"accuracy", "rule", "confusion"}) EXPECT_TRUE(j["gesture_accuracy"].contains(key)) << key;
+  // The log's name escaped in the text and read back unchanged.
+  const std::string text = j.dump(2);
+  EXPECT_NE(text.find("\"log\": \"a \\\"b\\\"\\n\""), std::string::npos) << text;
+  EXPECT_EQ(json::parse(text)["log"], "a \"b\"\n");
 }
 
 // The log's losses: gaps in seq per publisher's stream. GIVEN known gaps WHEN summarised THEN counted per
@@ -195,10 +200,11 @@ TEST(RunSummaryGaps, MessagesMissingFromTheLogPerChannel) {
   EXPECT_EQ(s.gaps.at("VEHICLE_STATE").missing, 1);
   EXPECT_EQ(s.logger_lost(), 3 + 1 + 1);  // not USER_TRACK's 2
 
-  const std::string j = summary_json(s);
-  EXPECT_NE(j.find("\"logger_lost\": 5"), std::string::npos) << j;
-  EXPECT_NE(j.find("\"CAMERA\": {\"messages\": 10, \"missing\": 3, \"streams\": 2, \"a_gap_is\": \"lost by the logger\"}"),
-            std::string::npos) << j;
+  const json j = summary_json(s)["log_gaps"];
+  EXPECT_EQ(j["logger_lost"], 5) << j.dump(2);
+  EXPECT_EQ(j["channels"]["CAMERA"],
+            json({{"messages", 10}, {"missing", 3}, {"streams", 2}, {"a_gap_is", "lost by the logger"}}))
+      << j.dump(2);
   const std::string t = summary_table(s);
   EXPECT_NE(t.find("5 lost by the logger; CAMERA 3/13"), std::string::npos) << t;
   EXPECT_NE(t.find("USER_TRACK 2/6*"), std::string::npos) << t;
@@ -214,7 +220,7 @@ TEST(RunSummaryGaps, NoGapsNoLoss) {
   const Summary s = a.summary();
   EXPECT_EQ(s.gaps.at("CAMERA").missing, 0);
   EXPECT_EQ(s.logger_lost(), 0);
-  EXPECT_NE(summary_json(s).find("\"logger_lost\": 0"), std::string::npos);
+  EXPECT_EQ(summary_json(s)["log_gaps"]["logger_lost"], 0);
 }
 
 }  // namespace
