@@ -4,15 +4,18 @@
 // LOCAL_POSITION_NED back to VEHICLE_STATE, bad bytes counted).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
@@ -168,6 +171,46 @@ TEST(FlightService, PointingMovesTheSimulatedDroneWestOnlyWhileEngaged) {
   EXPECT_TRUE(setpoints.got.back().reasons & flight_setpoint_t::REASON_LANDING);
   EXPECT_EQ(states.got.back().landed_state, vehicle_state_t::LANDED_LANDING);
   EXPECT_EQ(flight.stop() & 0x7f, 0);  // exited on SIGTERM by itself, no crash
+}
+
+// gpilot-flight with `args`, at most 10 s: its exit status (124: still running then) and what it wrote on stderr.
+struct Exit {
+  int code;
+  std::string err;
+};
+Exit run_flight(const std::string& args) {
+  const std::string cmd =
+      "timeout 10 " + kBin + "/gpilot-flight --lcm-url '" + std::string(kDefaultLcmUrl) + "' " + args + " 2>&1 >/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return {-1, "popen failed"};
+  std::string err;
+  char buf[512];
+  for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) err.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err};
+}
+
+// GIVEN a backend or an autopilot that is not one of the choices (or an endpoint that does not parse) WHEN
+// gpilot-flight starts THEN it exits 2 naming the key, before it says anything on the bus (the sections' check()
+// refuses them while the config is read; the service itself no longer checks them).
+TEST(FlightService, RefusesAnUnknownBackendOrAutopilotBeforeTheBus) {
+  Bus bus;
+  ASSERT_TRUE(bus.good());
+  Inbox<health_t> health;
+  bus.listen("HEALTH", health);
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"--set flight.backend=simm", "flight.backend: 'simm' is not one of sim, mavlink, none"},
+      {"--set flight.backend=mavlink --set mavlink.autopilot=px5", "mavlink.autopilot: 'px5' is not one of px4, ardupilot"},
+      {"--set flight.backend=sim --set mavlink.autopilot=px5", "mavlink.autopilot: 'px5' is not one of px4, ardupilot"},
+      {"--set flight.backend=mavlink --set mavlink.endpoint=udp:nohost", "mavlink.endpoint: "},
+  };
+  for (const auto& [args, says] : refused) {
+    const Exit e = run_flight(args);
+    EXPECT_EQ(e.code, 2) << args << "\n" << e.err;
+    EXPECT_NE(e.err.find("gpilot-flight: error: config error: " + says), std::string::npos) << args << "\n" << e.err;
+  }
+  bus.pump(0.3);
+  EXPECT_FALSE(has_health(health, "gpilot-flight")) << "a refused gpilot-flight came on the bus";
 }
 
 // The fake autopilot: a UDP socket on 127.0.0.1 that answers whoever wrote to it.
