@@ -1,17 +1,10 @@
 // gpilot-decide + gpilot-flight + gpilot-ctl as real processes on real LCM (inside a private network namespace):
 // HAND_OBS in, GESTURE_CMD, FLIGHT_SETPOINT and the simulator's VEHICLE_STATE out; and gpilot-flight's MAVLink
 // backend against a fake autopilot on 127.0.0.1 (HEARTBEAT, setpoint stream while engaged, COMMAND_LONG,
-// LOCAL_POSITION_NED back to VEHICLE_STATE, bad bytes counted).
+// LOCAL_POSITION_NED back to VEHICLE_STATE, bad bytes counted); a refused config ends it before the bus.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <cstring>
-
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <functional>
 #include <string>
@@ -25,6 +18,8 @@
 #include "clock.hpp"
 #include "mavlink/frame.hpp"
 #include "mavlink/messages.hpp"
+#include "run_command.hpp"
+#include "udp_socket.hpp"
 
 namespace gpilot {
 namespace {
@@ -173,21 +168,10 @@ TEST(FlightService, PointingMovesTheSimulatedDroneWestOnlyWhileEngaged) {
   EXPECT_EQ(flight.stop() & 0x7f, 0);  // exited on SIGTERM by itself, no crash
 }
 
-// gpilot-flight with `args`, at most 10 s: its exit status (124: still running then) and what it wrote on stderr.
-struct Exit {
-  int code;
-  std::string err;
-};
-Exit run_flight(const std::string& args) {
-  const std::string cmd =
-      "timeout 10 " + kBin + "/gpilot-flight --lcm-url '" + std::string(kDefaultLcmUrl) + "' " + args + " 2>&1 >/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return {-1, "popen failed"};
-  std::string err;
-  char buf[512];
-  for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) err.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err};
+// gpilot-flight with `args`, for at most 10 s: its exit status (124: still running then) and its stderr.
+test::CommandOutput run_flight(const std::string& args) {
+  return test::run_command("timeout 10 " + kBin + "/gpilot-flight --lcm-url '" + std::string(kDefaultLcmUrl) + "' " +
+                           args + " 2>&1 >/dev/null");
 }
 
 // GIVEN a backend or an autopilot that is not one of the choices (or an endpoint that does not parse) WHEN
@@ -205,9 +189,9 @@ TEST(FlightService, RefusesAnUnknownBackendOrAutopilotBeforeTheBus) {
       {"--set flight.backend=mavlink --set mavlink.endpoint=udp:nohost", "mavlink.endpoint: "},
   };
   for (const auto& [args, says] : refused) {
-    const Exit e = run_flight(args);
-    EXPECT_EQ(e.code, 2) << args << "\n" << e.err;
-    EXPECT_NE(e.err.find("gpilot-flight: error: config error: " + says), std::string::npos) << args << "\n" << e.err;
+    const test::CommandOutput e = run_flight(args);
+    EXPECT_EQ(e.code, 2) << args << "\n" << e.out;
+    EXPECT_NE(e.out.find("gpilot-flight: error: config error: " + says), std::string::npos) << args << "\n" << e.out;
   }
   bus.pump(0.3);
   EXPECT_FALSE(has_health(health, "gpilot-flight")) << "a refused gpilot-flight came on the bus";
@@ -216,35 +200,17 @@ TEST(FlightService, RefusesAnUnknownBackendOrAutopilotBeforeTheBus) {
 // The fake autopilot: a UDP socket on 127.0.0.1 that answers whoever wrote to it.
 class FakeAutopilot {
  public:
-  FakeAutopilot() {
-    fd_ = socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a);
-    socklen_t n = sizeof a;
-    getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &n);
-    port_ = ntohs(a.sin_port);
-    timeval tv{0, 10000};
-    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  }
-  ~FakeAutopilot() { close(fd_); }
-  int port() const { return port_; }
+  int port() const { return socket_.port(); }
   // Reads what has arrived (for up to 10 ms) into frames.
   void poll() {
-    uint8_t buf[2048];
-    sockaddr_in from{};
-    socklen_t n = sizeof from;
-    const ssize_t got = recvfrom(fd_, buf, sizeof buf, 0, reinterpret_cast<sockaddr*>(&from), &n);
-    if (got <= 0) return;
-    peer_ = from;
+    std::vector<uint8_t> buf;
+    if (!socket_.receive(buf, &peer_)) return;
     have_peer_ = true;
-    parser_.feed(buf, static_cast<size_t>(got), [&](const mavlink::Frame& f) { frames.push_back(f); });
+    parser_.feed(buf.data(), buf.size(), [&](const mavlink::Frame& f) { frames.push_back(f); });
     parser_.end_of_datagram();
   }
   void send(const std::vector<uint8_t>& bytes) {
-    if (have_peer_)
-      sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&peer_), sizeof peer_);
+    if (have_peer_) socket_.send_to(peer_, bytes.data(), bytes.size());
   }
   int count(uint32_t msgid) const {
     int n = 0;
@@ -255,8 +221,7 @@ class FakeAutopilot {
   bool have_peer_ = false;
 
  private:
-  int fd_ = -1;
-  int port_ = 0;
+  test::UdpSocket socket_;
   sockaddr_in peer_{};
   mavlink::FrameParser parser_;
 };

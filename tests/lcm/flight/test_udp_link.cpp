@@ -2,53 +2,19 @@
 // sender on the network is skipped and counted (inside the test's network namespace, on 127.0.0.1).
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <thread>
 
 #include "mavlink/udp_link.hpp"
+#include "udp_socket.hpp"
 
 namespace gpilot::mavlink {
 namespace {
 
-struct Socket {
-  int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  ~Socket() { close(fd); }
-  int bind_any() {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-    socklen_t n = sizeof a;
-    getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n);
-    return ntohs(a.sin_port);
-  }
-  void send_to(int port, const std::string& text) {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<uint16_t>(port));
-    sendto(fd, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  }
-};
-
-int local_port(int fd) {
-  sockaddr_in a{};
-  socklen_t n = sizeof a;
-  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n);
-  return ntohs(a.sin_port);
-}
-
 TEST(UdpLink, ReadsOnlyTheAutopilotsDatagrams) {
-  Socket autopilot, stranger;
-  const int port = autopilot.bind_any();
-  stranger.bind_any();
-  UdpLink link(Endpoint{"127.0.0.1", port});
+  test::UdpSocket autopilot, stranger;
+  UdpLink link(Endpoint{"127.0.0.1", autopilot.port()});
   ASSERT_TRUE(link.send({1, 2, 3}));  // the link's socket gets its port
-  const int link_port = local_port(link.fd());
+  const int link_port = test::local_port(link.fd());
   ASSERT_GT(link_port, 0);
   // GIVEN a stranger's datagram, then the autopilot's
   stranger.send_to(link_port, "forged vehicle state");

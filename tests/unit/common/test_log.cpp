@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "log.hpp"
+#include "run_command.hpp"
 #include "service_cli.hpp"
 
 namespace gpilot {
@@ -66,28 +67,18 @@ TEST(Log, LevelNamesAndEnvironment) {
   set_log_level(LogLevel::kInfo);
 }
 
-struct ProcessRun {
-  int code;
-  std::string out;
-};
-ProcessRun run_config(const std::string& args) {
-  const std::string cmd = std::string(GPILOT_BIN_DIR) + "/gpilot-config " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[512];
-  for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+test::CommandOutput run_config(const std::string& args) {
+  return test::run_command(std::string(GPILOT_BIN_DIR) + "/gpilot-config " + args + " 2>&1");
 }
 
 TEST(Log, ProcessesShareTheFormatVersionAndLevelFlags) {
   // --version: the program's name and the build's git describe (or the project version without git)
-  const ProcessRun v = run_config("--version");
+  const test::CommandOutput v = run_config("--version");
   EXPECT_EQ(v.code, 0);
   EXPECT_EQ(v.out, std::string("gpilot-config ") + gpilot_version() + "\n");
   EXPECT_NE(std::string(gpilot_version()), "");
   // a config error is an error line naming the key
-  const ProcessRun bad = run_config("--set flight.backend=simm");
+  const test::CommandOutput bad = run_config("--set flight.backend=simm");
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(bad.out, "gpilot-config: error: config error: flight.backend: 'simm' is not one of sim, mavlink, none\n");
   // --log-level and GPILOT_LOG_LEVEL must name a level
@@ -95,7 +86,7 @@ TEST(Log, ProcessesShareTheFormatVersionAndLevelFlags) {
   EXPECT_EQ(run_config("--log-level loud --defaults").code, 2);
   EXPECT_EQ(run_config("--defaults").code, 0);
   setenv("GPILOT_LOG_LEVEL", "loud", 1);
-  const ProcessRun env = run_config("--defaults");
+  const test::CommandOutput env = run_config("--defaults");
   unsetenv("GPILOT_LOG_LEVEL");
   EXPECT_EQ(env.code, 2);
   EXPECT_NE(env.out.find("GPILOT_LOG_LEVEL='loud'"), std::string::npos) << env.out;
