@@ -1,7 +1,13 @@
 // image_t <-> cv::Mat: exact for raw formats, close for JPEG, and a reason for every bad image.
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <turbojpeg.h>
 
 #include "image_codec.hpp"
 
@@ -67,6 +73,55 @@ TEST(ImageCodec, JpegRoundTripIsClose) {
   ASSERT_EQ(image_to_mat(msg, back), "");
   EXPECT_EQ(back.size(), src.size());
   EXPECT_GT(cv::PSNR(src, back), 30.0);
+}
+
+// image_to_mat decodes with libjpeg-turbo's own API; replays of logs made before (and tools that read frames
+// with OpenCV) rely on it giving exactly the pixels cv::imdecode gives, for the JPEGs cameras and our capture make:
+// 4:2:0, 4:2:2, 4:4:4 and grey, encoded by OpenCV and by other encoders (the photos shipped in data/).
+void expect_same_as_imdecode(const std::vector<uint8_t>& bytes, const std::string& what) {
+  const cv::Mat ref = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  ASSERT_FALSE(ref.empty()) << what;
+  image_t msg;
+  msg.width = ref.cols;
+  msg.height = ref.rows;
+  msg.pixel_format = image_t::PIXEL_FORMAT_JPEG;
+  msg.data = bytes;
+  msg.size = static_cast<int32_t>(bytes.size());
+  cv::Mat ours;
+  ASSERT_EQ(image_to_mat(msg, ours, ImageLimits{}), "") << what;
+  ASSERT_EQ(ours.type(), CV_8UC3) << what;
+  EXPECT_EQ(cv::norm(ref, ours, cv::NORM_INF), 0.0) << what;
+}
+
+TEST(ImageCodec, JpegPixelsAreExactlyOpenCvs) {
+  cv::Mat src(240, 320, CV_8UC3);
+  cv::GaussianBlur(pattern(320, 240), src, cv::Size(5, 5), 2);
+  std::vector<uint8_t> bytes;
+  cv::imencode(".jpg", src, bytes, {cv::IMWRITE_JPEG_QUALITY, 90});
+  expect_same_as_imdecode(bytes, "OpenCV's encoder, 4:2:0");
+  // TurboJPEG's encoder for the other subsamplings (OpenCV 4.6 cannot choose one).
+  tjhandle tj = tjInitCompress();
+  ASSERT_NE(tj, nullptr);
+  for (int sub : {TJSAMP_420, TJSAMP_422, TJSAMP_444, TJSAMP_GRAY}) {
+    for (int q : {50, 95}) {
+      unsigned char* jpeg = nullptr;
+      unsigned long size = 0;
+      ASSERT_EQ(tjCompress2(tj, src.data, src.cols, static_cast<int>(src.step), src.rows, TJPF_BGR, &jpeg, &size, sub, q, 0), 0);
+      expect_same_as_imdecode(std::vector<uint8_t>(jpeg, jpeg + size), "subsampling " + std::to_string(sub) + " q" + std::to_string(q));
+      tjFree(jpeg);
+    }
+  }
+  tjDestroy(tj);
+  int files = 0;
+  for (const char* dir : {"data/people", "data/real_people/images"}) {
+    for (const auto& f : std::filesystem::directory_iterator(std::filesystem::path(GPILOT_SOURCE_DIR) / dir)) {
+      if (f.path().extension() != ".jpg") continue;
+      std::ifstream in(f.path(), std::ios::binary);
+      expect_same_as_imdecode(std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {}), f.path().filename().string());
+      ++files;
+    }
+  }
+  EXPECT_GE(files, 10);
 }
 
 TEST(ImageCodec, BadImagesGiveReasons) {
