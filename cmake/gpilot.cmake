@@ -32,11 +32,12 @@ function(gpilot_add_test)
   endif()
 endfunction()
 
-# gpilot_add_executable(name SOURCES ... LIBS ...): a service or tool in build/bin.
+# gpilot_add_executable(name SOURCES ... LIBS ...): a service or tool in build/bin, installed into bin/.
 function(gpilot_add_executable NAME)
   cmake_parse_arguments(E "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${NAME} ${E_SOURCES})
   target_link_libraries(${NAME} PRIVATE ${E_LIBS})
+  install(TARGETS ${NAME} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
 # Adds every child folder of the current source folder that has a CMakeLists.txt, in name order.

@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
   ServiceCli cli("gpilot-launch", "Start, watch, restart and stop the gesture-pilot processes of deploy/services.yaml.");
   std::string services_file = "deploy/services.yaml";
   std::vector<std::string> var_args;
-  std::string systemd_dir, bus_key_file;
+  std::string systemd_dir, bus_key_file, systemd_user;
   double duration_s = 0;
   bool engage = false;
   std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
   cli.app().add_option("--systemd", systemd_dir, "write one systemd unit per service into DIR and exit");
   cli.app().add_option("--systemd-bus-key", bus_key_file,
                        "with --systemd: the units' bus key file (Environment=GPILOT_BUS_KEY; needed at ttl > 0)");
+  cli.app().add_option("--systemd-user", systemd_user, "with --systemd: the user the units run as (default: root)");
   cli.app().add_option("--duration", duration_s, "stop everything after this many seconds");
   cli.app().add_flag("--engage", engage, "send FLIGHT_CONTROL engage once gpilot-flight reports");
   cli.app().add_option("--bin-dir", bin_dir, "where the gpilot binaries are (default: beside this one)");
@@ -175,7 +176,7 @@ int main(int argc, char** argv) {
         if (!service_wanted(s, vars)) continue;
         // A source that ends a run (a scenario, a file) is restarted by systemd like any other: on a companion
         // computer it is the camera, which does not end.
-        std::ofstream(fs::path(systemd_dir) / (s.name + ".service")) << systemd_unit(s, fs::absolute(bin_dir).string(), after, url, bus_key_file);
+        std::ofstream(fs::path(systemd_dir) / (s.name + ".service")) << systemd_unit(s, fs::absolute(bin_dir).string(), after, url, bus_key_file, systemd_user);
         std::printf("wrote %s/%s.service\n", systemd_dir.c_str(), s.name.c_str());
         after = s.name;
       }

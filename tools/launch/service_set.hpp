@@ -43,8 +43,10 @@ bool service_wanted(const ServiceSpec& spec, const std::map<std::string, std::st
 // A systemd unit for one service: ExecStart from bin_dir, Restart from respawn, KillSignal, TimeoutStopSec,
 // ordered After= the service before it; with watchdog_s, Type=notify and WatchdogSec (systemd then kills a
 // process that stops pinging, WatchdogSignal=SIGKILL, and Restart= brings it back). bus_key: the bus key
-// file the units use (Environment=GPILOT_BUS_KEY), "" for none.
+// file the units use (Environment=GPILOT_BUS_KEY), "" for none. user: User=/Group= the stage runs as, "" for
+// root. Every unit is hardened (NoNewPrivileges, ProtectSystem=strict, ProtectHome, PrivateTmp), waits for
+// network-online.target, and is not restarted after exit status 2 (a refused config).
 std::string systemd_unit(const ServiceSpec& spec, const std::string& bin_dir, const std::string& after,
-                         const std::string& lcm_url, const std::string& bus_key = "");
+                         const std::string& lcm_url, const std::string& bus_key = "", const std::string& user = "");
 
 }  // namespace gpilot

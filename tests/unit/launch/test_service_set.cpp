@@ -60,9 +60,17 @@ TEST(ServiceSet, SystemdUnitFromSpec) {
   s.command = {"gpilot-hands", "--config", "/etc/gpilot.yaml"};
   s.stop_signal = SIGINT;
   s.stop_timeout_s = 4;
-  const std::string unit = systemd_unit(s, "/opt/gpilot/bin", "gpilot-decide", "udpm://239.255.76.67:7667?ttl=1");
+  const std::string unit = systemd_unit(s, "/opt/gpilot/bin", "gpilot-decide", "udpm://239.255.76.67:7667?ttl=1",
+                                        "/etc/k", "gesture-pilot");
   EXPECT_NE(unit.find("ExecStart=/opt/gpilot/bin/gpilot-hands --config /etc/gpilot.yaml\n"), std::string::npos) << unit;
   EXPECT_NE(unit.find("After=network-online.target gpilot-decide.service\n"), std::string::npos);
+  EXPECT_NE(unit.find("Wants=network-online.target gpilot-decide.service\n"), std::string::npos);
+  EXPECT_NE(unit.find("\n[Service]\nUser=gesture-pilot\nGroup=gesture-pilot\n"), std::string::npos);
+  for (const char* hardening : {"NoNewPrivileges=yes\n", "ProtectSystem=strict\n", "ProtectHome=yes\n",
+                                "PrivateTmp=yes\n", "RestartPreventExitStatus=2\n"})
+    EXPECT_NE(unit.find(hardening), std::string::npos) << hardening;
+  EXPECT_NE(unit.find("Environment=GPILOT_BUS_KEY=/etc/k\n"), std::string::npos);
+  EXPECT_EQ(systemd_unit(s, "/b", "", "u").find("User="), std::string::npos);  // no user: root
   EXPECT_NE(unit.find("Restart=always\n"), std::string::npos);
   EXPECT_NE(unit.find("KillSignal=SIGINT\n"), std::string::npos);
   EXPECT_NE(unit.find("TimeoutStopSec=4\n"), std::string::npos);

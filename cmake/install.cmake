@@ -1,0 +1,48 @@
+# What `cmake --install build --prefix P` installs, so that nothing needs the checkout afterwards:
+#   P/bin/gpilot-*                       every binary (gpilot_add_executable)
+#   P/share/gesture-pilot/               the data the binaries load, in the checkout's layout, so that the
+#                                        relative paths of config files resolve the same (common/paths.cpp
+#                                        finds it from the executable: <exe dir>/../share/gesture-pilot)
+#   P/lib/systemd/system/gpilot-*.service  the companion-computer units (deploy/systemd/generate, prefix P)
+#   P/include/gpilot/*.hpp, P/lib/cmake/gesture_pilot/   the message types for other projects
+#   P/lib/python3/dist-packages/gpilot/, gpilot_lcmlog.py  Python types and a log reader
+#   P/share/java/gpilot_lcmtypes.jar     for lcm-spy
+set(_share ${GPILOT_INSTALL_DATADIR})
+
+# Data: the skin model (hands.skin.model), the synthetic world's skin tones, face and backdrops (scenarios),
+# with their attribution. The rest of data/ (test and evaluation sets) stays in the checkout.
+install(FILES data/README.md DESTINATION ${_share}/data)
+install(FILES data/skin/skin_model.yaml data/skin/synthetic_skin_tones.csv data/skin/README.md
+        DESTINATION ${_share}/data/skin)
+install(FILES data/people/astronaut.png DESTINATION ${_share}/data/people)
+install(DIRECTORY data/backgrounds DESTINATION ${_share}/data)
+# Configs, scenarios and the process list (gpilot-launch's default --services).
+install(DIRECTORY deploy/config deploy/scenarios DESTINATION ${_share}/deploy FILES_MATCHING PATTERN "*.yaml")
+install(FILES deploy/services.yaml DESTINATION ${_share}/deploy)
+
+# systemd units for the installed binaries: written at install time with the prefix then in effect
+# (`--prefix` or CPack's /usr), by the same generator as the committed deploy/systemd/*.service.
+install(CODE "
+  set(_units \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/systemd/system\")
+  message(STATUS \"Installing: \${_units}/gpilot-*.service\")
+  execute_process(COMMAND \${CMAKE_COMMAND} -E env PREFIX=\${CMAKE_INSTALL_PREFIX}
+                          GPILOT_LAUNCH=$<TARGET_FILE:gpilot-launch>
+                          ${CMAKE_SOURCE_DIR}/deploy/systemd/generate \${_units}
+                  RESULT_VARIABLE _rc OUTPUT_QUIET)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR \"deploy/systemd/generate failed (\${_rc})\")
+  endif()
+")
+
+# The exported CMake package: find_package(gesture_pilot) gives gesture_pilot::lcmtypes (the lcm-gen C++
+# headers under include/gpilot/, linking LCM through pkg-config as this project does).
+include(CMakePackageConfigHelpers)
+set(_cmakedir ${CMAKE_INSTALL_LIBDIR}/cmake/gesture_pilot)
+install(EXPORT gesture_pilot_targets NAMESPACE gesture_pilot:: FILE gesture_pilot_targets.cmake
+        DESTINATION ${_cmakedir})
+configure_package_config_file(cmake/gesture_pilotConfig.cmake.in
+  ${CMAKE_BINARY_DIR}/package/gesture_pilotConfig.cmake INSTALL_DESTINATION ${_cmakedir})
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/gesture_pilotConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/package/gesture_pilotConfig.cmake
+              ${CMAKE_BINARY_DIR}/package/gesture_pilotConfigVersion.cmake DESTINATION ${_cmakedir})
