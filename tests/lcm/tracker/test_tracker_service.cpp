@@ -8,7 +8,9 @@
 
 #include <atomic>
 #include <cstdio>
+#include <functional>
 #include <map>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -29,6 +31,28 @@ namespace {
 
 const char* kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 
+// gpilot-tracker as a real process and a test node on the bus beside it, keeping the stage's last HEALTH.
+// wait_for_health() returns once the first HEALTH came (the stage is then listening).
+struct TrackerUnderTest {
+  explicit TrackerUnderTest(const std::string& node_name) : bus(node_name, kUrl) {
+    bus.subscribe<health_t>("HEALTH", [this](const health_t& m, int64_t) {
+      if (m.name != "gpilot-tracker") return;
+      last_health = m;
+      heard = true;
+    });
+  }
+  bool spin_until(const std::function<bool()>& done, int max_ms) {
+    for (int waited = 0; waited < max_ms && !done(); waited += 20) bus.spin_once(20);
+    return done();
+  }
+  bool wait_for_health() { return spin_until([this] { return heard; }, 10000); }
+
+  test::ChildProcess service{{std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl}};
+  BusNode bus;
+  health_t last_health{};
+  bool heard = false;
+};
+
 }  // namespace
 
 TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
@@ -40,23 +64,14 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   }
   const cv::Rect2d init(261, 48, 39, 65);
 
-  test::ChildProcess service({std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl});
-  ASSERT_GT(service.pid(), 0) << "cannot start gpilot-tracker";
-  BusNode bus("test-tracker", kUrl);
+  TrackerUnderTest stage("test-tracker");
+  ASSERT_GT(stage.service.pid(), 0) << "cannot start gpilot-tracker";
+  BusNode& bus = stage.bus;
+  const health_t& last_health = stage.last_health;
+  const auto spin_until = [&stage](const std::function<bool()>& done, int max_ms) { return stage.spin_until(done, max_ms); };
   std::map<int64_t, user_track_t> tracks;
-  health_t last_health{};
-  bool heard = false;
   bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
-  bus.subscribe<health_t>("HEALTH", [&](const health_t& m, int64_t) {
-    if (m.name != "gpilot-tracker") return;
-    last_health = m;
-    heard = true;
-  });
-  auto spin_until = [&](const std::function<bool()>& done, int max_ms) {
-    for (int waited = 0; waited < max_ms && !done(); waited += 20) bus.spin_once(20);
-    return done();
-  };
-  ASSERT_TRUE(spin_until([&] { return heard; }, 10000)) << "no HEALTH from gpilot-tracker";
+  ASSERT_TRUE(stage.wait_for_health()) << "no HEALTH from gpilot-tracker";
 
   // GIVEN a manual box, then frames 0..15 with two malformed CAMERA messages after frame 7
   tracker_init_t req{};
@@ -139,14 +154,16 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   }
   // THEN the face search starts a track, and USER_TRACK carries the face the core finds in that frame.
   ASSERT_TRUE(want.face.has_value());
+  // (value_or: GCC 12 cannot see the assertion above and warns of an uninitialised read)
+  const cv::Rect2d want_face = want.face.value_or(cv::Rect2d());
   const user_track_t& got = tracks[seq];
   EXPECT_EQ(got.status, user_track_t::STATUS_TRACKING);
   EXPECT_EQ(got.init_source, user_track_t::INIT_FACE);
   EXPECT_EQ(got.track_id, 2);
-  EXPECT_EQ(got.face_box[0], static_cast<float>(want.face->x));
-  EXPECT_EQ(got.face_box[1], static_cast<float>(want.face->y));
-  EXPECT_EQ(got.face_box[2], static_cast<float>(want.face->width));
-  EXPECT_EQ(got.face_box[3], static_cast<float>(want.face->height));
+  EXPECT_EQ(got.face_box[0], static_cast<float>(want_face.x));
+  EXPECT_EQ(got.face_box[1], static_cast<float>(want_face.y));
+  EXPECT_EQ(got.face_box[2], static_cast<float>(want_face.width));
+  EXPECT_EQ(got.face_box[3], static_cast<float>(want_face.height));
   EXPECT_TRUE(cv::Rect2d(got.face_box[0], got.face_box[1], got.face_box[2], got.face_box[3]).contains({298, 81}));
 }
 
@@ -164,19 +181,20 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
     while (src->next(f)) frames.push_back(f.image.clone());
   }
   ASSERT_EQ(frames.size(), 53u);
-  test::ChildProcess service({std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl});
-  ASSERT_GT(service.pid(), 0) << "cannot start gpilot-tracker";
 
   const std::string log_path = ::testing::TempDir() + "gpilot_tracker_load.lcmlog";
   std::remove(log_path.c_str());
   std::map<int64_t, user_track_t> tracks;
   health_t last_health{};
-  bool heard = false;
   {
+    // The stage ends with this scope, before its log is replayed.
+    TrackerUnderTest stage("test-tracker-load");
+    ASSERT_GT(stage.service.pid(), 0) << "cannot start gpilot-tracker";
+    BusNode& bus = stage.bus;
+    const auto spin_until = [&stage](const std::function<bool()>& done, int max_ms) { return stage.spin_until(done, max_ms); };
     lcm::LogFile log(log_path, "w");
     ASSERT_TRUE(log.good());
     int64_t eventnum = 0;
-    BusNode bus("test-tracker-load", kUrl);
     bus.subscribe_raw("CAMERA|TRACKER_INIT|USER_TRACK", [&](const std::string& ch, const void* data, size_t size, int64_t t) {
       lcm::LogEvent ev{};
       ev.eventnum = eventnum++;
@@ -187,16 +205,7 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
       log.writeEvent(&ev);
     });
     bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
-    bus.subscribe<health_t>("HEALTH", [&](const health_t& m, int64_t) {
-      if (m.name != "gpilot-tracker") return;
-      last_health = m;
-      heard = true;
-    });
-    auto spin_until = [&](const std::function<bool()>& done, int max_ms) {
-      for (int waited = 0; waited < max_ms && !done(); waited += 20) bus.spin_once(20);
-      return done();
-    };
-    ASSERT_TRUE(spin_until([&] { return heard; }, 10000)) << "no HEALTH from gpilot-tracker";
+    ASSERT_TRUE(stage.wait_for_health()) << "no HEALTH from gpilot-tracker";
 
     // GIVEN both cores busy
     std::atomic<bool> stop{false};
@@ -233,7 +242,8 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
     stop = true;
     for (auto& t : busy) t.join();
     ASSERT_FALSE(tracks.empty()) << "no USER_TRACK at all";
-    spin_until([&] { return last_health.messages_out >= static_cast<int64_t>(tracks.size()); }, 5000);
+    spin_until([&] { return stage.last_health.messages_out >= static_cast<int64_t>(tracks.size()); }, 5000);
+    last_health = stage.last_health;
   }
   // Skipped: the frames between the first and the last it processed that it never saw.
   const int64_t skipped = tracks.rbegin()->first - tracks.begin()->first + 1 - static_cast<int64_t>(tracks.size());
