@@ -11,13 +11,16 @@ struct BodyProportions {
   double width_in_faces = 2.75;   //!< body box width / face box width
   double height_in_faces = 7.0;   //!< body box height / face box height
   double top_in_faces = 0.25;     //!< body box top above the face box top, in face heights
+  //! body box centre right of the face centre, in face widths (the preset: 0; a track fitted to the image
+  //! evidence may differ, see services/tracker/body_fit.hpp)
+  double centre_in_faces = 0.0;
 };
 
-// Centred on the face horizontally, its top a little above the face top; not clipped.
+// Centred on the face horizontally (the preset), its top a little above the face top; not clipped.
 inline cv::Rect2d body_from_face(const cv::Rect2d& face, const BodyProportions& p) {
   const double w = face.width * p.width_in_faces;
   const double h = face.height * p.height_in_faces;
-  const double cx = face.x + face.width / 2;
+  const double cx = face.x + face.width / 2 + p.centre_in_faces * face.width;
   return cv::Rect2d(cx - w / 2, face.y - p.top_in_faces * face.height, w, h);
 }
 

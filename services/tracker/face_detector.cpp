@@ -14,11 +14,14 @@ namespace gpilot {
 
 cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) { return body_from_face(face, p.body()); }
 
-cv::Rect face_recheck_window(const cv::Rect2d& b, const TrackerParams& p) {
-  const double fw = b.width / p.body_width_in_faces, fh = b.height / p.body_height_in_faces;
-  const double face_top = b.y + p.body_top_in_faces * fh;
-  return cv::Rect(cv::Rect2d(b.x + b.width / 2 - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
+cv::Rect face_recheck_window(const cv::Rect2d& b, const BodyProportions& r) {
+  const double fw = b.width / r.width_in_faces, fh = b.height / r.height_in_faces;
+  const double face_top = b.y + r.top_in_faces * fh;
+  const double face_cx = b.x + b.width / 2 - r.centre_in_faces * fw;
+  return cv::Rect(cv::Rect2d(face_cx - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
 }
+
+cv::Rect face_recheck_window(const cv::Rect2d& b, const TrackerParams& p) { return face_recheck_window(b, p.body()); }
 
 FaceDetector::FaceDetector(const TrackerParams& params) : p_(params) {
   const std::string path = resolve_project_path(p_.face.cascade);
@@ -137,10 +140,7 @@ std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) {
     cascade_.detectMultiScale(small_(job.tile & cv::Rect(cv::Point(), small_.size())), faces, p_.face.scale_factor,
                               p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
                               job.max_face > 0 ? cv::Size(job.max_face, job.max_face) : cv::Size());
-    if (auto d = best_of(faces, job.shrink, job.tile.tl(), frame)) {
-      next_job_ = 0;
-      return d;
-    }
+    if (auto d = best_of(faces, job.shrink, job.tile.tl(), frame)) return d;
     if (next_job_ == 0) break;  // the scan is complete: the next frame starts it again
   }
   return std::nullopt;

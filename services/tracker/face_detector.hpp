@@ -20,9 +20,10 @@ struct FaceDetection {
 // face top, its size the head-body ratios of params.
 cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& params);
 
-// Where the face re-check looks for the face of a body box: 3 face widths wide centred on the box, from 0.75
-// face heights above the face top the head-body ratios put there, 2.5 face heights tall (not clipped).
-cv::Rect face_recheck_window(const cv::Rect2d& body, const TrackerParams& params);
+// Where the face re-check looks for the face of a body box: 3 face widths wide centred where the ratios put
+// the face, from 0.75 face heights above the face top they put there, 2.5 face heights tall (not clipped).
+cv::Rect face_recheck_window(const cv::Rect2d& body, const BodyProportions& ratios);
+cv::Rect face_recheck_window(const cv::Rect2d& body, const TrackerParams& params);  // the preset ratios
 
 class FaceDetector {
  public:
@@ -36,8 +37,10 @@ class FaceDetector {
 
   // One frame's share of a whole-frame search spread over frames, within face.scan_slice_pixels: the next
   // tiles of the scan (octaves of face sizes, large faces first; each octave's faces min_face_px .. 2.4x that
-  // in its shrunk image, in tiles overlapping by that), the largest face of the first tile that has one. A
-  // face found, a new frame size or restart_scan() start the scan over. scan_slice_pixels 0: detect(frame).
+  // in its shrunk image, in tiles overlapping by that), the largest face of the first tile that has one. The
+  // next step goes on after that tile (a face the caller refuses, e.g. one on a poster, does not hold the scan
+  // there); a new frame size or restart_scan() (a track started) start the scan over. scan_slice_pixels 0:
+  // detect(frame).
   std::optional<FaceDetection> scan_step(const cv::Mat& frame);
   void restart_scan() { next_job_ = 0; }
   //! Tiles in the scan of a frame of this size, and the pixels the last scan_step searched.

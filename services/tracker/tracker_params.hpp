@@ -82,16 +82,84 @@ struct DsstParams {
   }
 };
 
+// Before a track starts on a face (SEARCHING, or a LOST track re-anchored on one), the body box the head-body
+// ratios give is checked against the image (body_fit.hpp): on held-out videos a dancing person's face box gave
+// a body box much larger than the person, running off the bottom of the frame. All lengths in face widths
+// (horizontal) or face heights (vertical) of the cascade's face box.
+struct BodyFitParams {
+  // A face whose preset body box lies mostly outside the frame (a face at the bottom edge, the body below it)
+  // is refused: too little of the person to learn a filter from. 0: off.
+  double min_in_frame = 0.5;           //!< fraction of the preset box's area that must be inside the frame
+  // The torso sample: below the chin (the neck left out), centred on the face.
+  double torso_gap_in_faces = 0.25;    //!< torso sample's top below the face box's bottom, face heights
+  double torso_height_in_faces = 1.5;  //!< torso sample height, face heights
+  double torso_half_width_in_faces = 0.5;  //!< torso sample half width, face widths
+  double min_torso_in_frame = 0.5;     //!< fraction of the torso sample inside the frame, else no evidence
+  // The background beside the person: two strips just outside the largest box the fit may give (fit_max of
+  // the preset), level with the torso sample (the evidence) or from the chin to the box's bottom (the fit).
+  double beside_width_in_faces = 1.0;  //!< each strip's width, face widths
+  // Colour evidence of a body under the face: 1 - Bhattacharyya coefficient of the torso sample's and the
+  // strips' colour histograms (0: the same colours, 1: none shared). A face printed on a poster or a T-shirt
+  // has the same poster or shirt below it as beside it. 0: off.
+  double min_separation = 0.2;
+  int bins_per_channel = 8;            //!< colour histogram bins per BGR channel (grey frames: this many levels)
+  double fit_face_px = 24.0;           //!< the evidence is read in a copy where the face is at most this wide
+  // The fit: the person's extent from the colour evidence (P(person | colour) from the centre band against
+  // the strips beside the box): width where the chest band's columns are the person's, bottom where the
+  // centre band's rows stop being. Applied only when it differs from the preset by more than fit_tolerance,
+  // clamped to [fit_min, fit_max] of the preset (both 1: no fit); the box stays centred on the face within
+  // max_shift_in_faces. The track keeps the fitted ratios (the face re-check re-anchors with them).
+  double fit_min_separation = 0.5;     //!< weaker colour evidence (still a body) keeps the preset box
+  double fit_min = 0.6;                //!< smallest fitted width or height, fraction of the preset
+  double fit_max = 1.3;                //!< largest fitted width or height, fraction of the preset
+  double fit_tolerance = 0.15;         //!< a fitted side within this fraction of the preset keeps the preset
+  double skin_sample_in_faces = 0.5;   //!< the face box's middle (this fraction of its sides) is the person's colours too
+  // The preset box is wider than the person's silhouette at the chest (arms at the sides): a margin for the
+  // arms to move. The synthetic person's silhouette is 0.67..0.82 of the preset width over the tour (the box
+  // the hands rules were tuned on), Messi's (messi5.jpg) 0.85.
+  double silhouette_width_in_box = 0.75;  //!< the chest silhouette's width that gives the preset width, fraction of it
+  double fit_person_p = 0.5;           //!< a pixel is the person's when P(person | colour) is at least this
+  double fit_column_fraction = 0.5;    //!< a chest column is the person's when this fraction of it is
+  double fit_row_fraction = 0.3;       //!< a centre-band row is the person's when this fraction of it is (legs apart)
+  double fit_gap_in_faces = 0.5;       //!< rows not the person's over at most this (a belt, a hand) do not end it, face heights
+  double max_shift_in_faces = 0.5;     //!< the fitted box's centre at most this far from the face's, face widths
+
+  template <class V>
+  void visit(V& v) {
+    v("min_in_frame", min_in_frame, 0.0, 1.0, "refuse a face whose body box has less of its area in the frame (0: off)");
+    v("torso_gap_in_faces", torso_gap_in_faces, 0.0, 5.0, "torso sample's top below the face bottom, face heights");
+    v("torso_height_in_faces", torso_height_in_faces, 0.1, 10.0, "torso sample height, face heights");
+    v("torso_half_width_in_faces", torso_half_width_in_faces, 0.1, 5.0, "torso sample half width, face widths");
+    v("min_torso_in_frame", min_torso_in_frame, 0.0, 1.0, "refuse a face with less of its torso sample in the frame");
+    v("beside_width_in_faces", beside_width_in_faces, 0.1, 10.0, "background strips beside the largest fitted body box, each this wide, face widths");
+    v("min_separation", min_separation, 0.0, 1.0, "refuse a face whose torso colours separate less from the background beside (0: off)");
+    v("bins_per_channel", bins_per_channel, 2, 32, "colour histogram bins per channel");
+    v("fit_face_px", fit_face_px, 4.0, 1000.0, "body evidence read where the face is at most this wide, pixels");
+    v("fit_min_separation", fit_min_separation, 0.0, 1.0, "fit the box only when the torso's colour separation is at least this");
+    v("fit_min", fit_min, 0.1, 1.0, "fitted body width/height at least this fraction of the preset");
+    v("fit_max", fit_max, 1.0, 10.0, "fitted body width/height at most this fraction of the preset");
+    v("fit_tolerance", fit_tolerance, 0.0, 10.0, "fitted side within this fraction of the preset: keep the preset");
+    v("skin_sample_in_faces", skin_sample_in_faces, 0.0, 1.0, "fit: the face's middle, this fraction of its sides, counts as the person's colours (bare arms)");
+    v("silhouette_width_in_box", silhouette_width_in_box, 0.1, 2.0, "fit: chest silhouette width / body box width of the preset");
+    v("fit_person_p", fit_person_p, 0.0, 1.0, "pixel is the person's when P(person | colour) is at least this");
+    v("fit_column_fraction", fit_column_fraction, 0.0, 1.0, "chest column is the person's when this fraction of it is");
+    v("fit_row_fraction", fit_row_fraction, 0.0, 1.0, "centre-band row is the person's when this fraction of it is");
+    v("fit_gap_in_faces", fit_gap_in_faces, 0.0, 10.0, "a gap in the person's rows up to this does not end them, face heights");
+    v("max_shift_in_faces", max_shift_in_faces, 0.0, 5.0, "fitted box centre at most this far from the face centre, face widths");
+  }
+};
+
 struct TrackerParams {
   FaceDetectorParams face;
   DsstParams dsst;
+  BodyFitParams body_fit;
   // The paper's "preset head-body ratio" is not given. Ours: an adult is about 7.5 heads tall and a face
   // box from the cascade is about 0.8 of the head height; a box 2.75 face widths wide holds shoulders and
   // arms resting at the sides, 7 face heights tall reaches below the knees.
   double body_width_in_faces = 2.75;   //!< body box width / face box width
   double body_height_in_faces = 7.0;   //!< body box height / face box height
   double body_top_in_faces = 0.25;     //!< body box top sits this many face heights above the face box top
-  BodyProportions body() const { return {body_width_in_faces, body_height_in_faces, body_top_in_faces}; }
+  BodyProportions body() const { return {body_width_in_faces, body_height_in_faces, body_top_in_faces, 0.0}; }
   // Bolme et al. (MOSSE, CVPR 2010): PSR is 20..60 while tracking and drops below 7 on failure. Measured
   // here: min 12.6 over OTB Crossing, 36 over cf_tracking_sample; 4..6 after a cut to another scene.
   double lost_psr = 7.0;               //!< PSR below this counts as a bad frame
@@ -134,6 +202,7 @@ struct TrackerParams {
   void visit(V& v) {
     v.group("face", face);
     v.group("dsst", dsst);
+    v.group("body_fit", body_fit);
     v("body_width_in_faces", body_width_in_faces, 0.5, 20.0, "head-body ratio: body box width / face width");
     v("body_height_in_faces", body_height_in_faces, 0.5, 20.0, "head-body ratio: body box height / face height");
     v("body_top_in_faces", body_top_in_faces, 0.0, 5.0, "body box top above the face top, in face heights");

@@ -5,6 +5,7 @@
 // does not advance the track.
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -79,11 +80,20 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
       return;
     }
     node.publish("USER_TRACK", to_message(out, msg));
+    std::string detail = out.status == gpilot::TrackStatus::kTracking ? "tracking"
+                         : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
+                                                                      : "searching for a face";
+    // Faces found but not started on (their body box failed the image check), counted by reason.
+    std::string refused;
+    for (int r = 1; r < gpilot::kFaceRefusals; ++r) {
+      const auto why = static_cast<gpilot::FaceRefusal>(r);
+      if (const int64_t n = tracker.refusals(why); n > 0)
+        refused += (refused.empty() ? "" : ", ") + std::to_string(n) + " " + gpilot::refusal_text(why);
+    }
+    if (!refused.empty()) detail += "; faces refused: " + refused;
     node.set_state(out.status == gpilot::TrackStatus::kTracking ? gpilot::health_t::STATE_OK
                                                                 : gpilot::health_t::STATE_DEGRADED,
-                   out.status == gpilot::TrackStatus::kTracking ? "tracking"
-                   : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
-                                                                : "searching for a face");
+                   detail);
   }, params.camera_queue);
 
   node.subscribe<gpilot::tracker_init_t>("TRACKER_INIT", [&node, &tracker](const gpilot::tracker_init_t& msg, int64_t) {

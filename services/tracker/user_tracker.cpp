@@ -7,7 +7,8 @@
 
 namespace gpilot {
 
-UserTracker::UserTracker(const TrackerParams& params) : p_(params), faces_(params), dsst_(params.dsst) {}
+UserTracker::UserTracker(const TrackerParams& params)
+    : p_(params), faces_(params), dsst_(params.dsst), track_body_(params.body()) {}
 
 std::string UserTracker::set_box(const cv::Rect2d& box) {
   if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height))
@@ -72,13 +73,14 @@ cv::Rect2d UserTracker::body_box(const cv::Rect2d& window) const {
 UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   frames_since_face_ = 0;
   const cv::Rect2d& b = out_.box;
-  const double fw = b.width / p_.body_width_in_faces;
-  const cv::Rect roi = face_recheck_window(b, p_);
+  const double fw = b.width / track_body_.width_in_faces;
+  const cv::Rect roi = face_recheck_window(b, track_body_);
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   const auto face = faces_.detect(frame, roi);
   if (!face) return in_view ? FaceCheck::Missed : FaceCheck::OutOfView;
-  // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view.
-  const cv::Rect2d body = body_from_face(face->face, p_);
+  // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
+  // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.
+  const cv::Rect2d body = body_from_face(face->face, track_body_);
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
@@ -106,9 +108,19 @@ bool UserTracker::search(const cv::Mat& frame) {
     face = faces_.detect(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
   }
   if (!face) return false;
+  // The body box checked against the image before a track starts on it (body_fit.hpp): a face with no body
+  // in view under it is refused (counted) and the search goes on; else the box fitted to the person.
+  const BodyFit fit = fit_body(frame, face->face, p_.body(), p_.body_fit);
+  if (fit.refused != FaceRefusal::kNone) {
+    ++refusals_[static_cast<size_t>(fit.refused)];
+    out_.refused = fit.refused;
+    return false;
+  }
   // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
-  start(frame, body_from_face(face->face, p_), InitSource::kFace);
+  track_body_ = fit.body;
+  start(frame, fit.box, InitSource::kFace);
   found_face(frame, face->face);
+  faces_.restart_scan();  // the next search (after a loss) scans from the first tile
   return true;
 }
 
@@ -184,6 +196,7 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
   if (frame.empty() || frame.depth() != CV_8U || (frame.channels() != 1 && frame.channels() != 3))
     throw std::invalid_argument("UserTracker: frame must be a non-empty CV_8UC1 or CV_8UC3 image");
   out_.face.reset();  // set again below only if the cascade finds the face in this frame
+  out_.refused = FaceRefusal::kNone;
   if (frame.size() != frame_size_) {
     if (out_.status != TrackStatus::kSearching) reset();  // a LOST track's filter and box are of the old size too
     frame_size_ = frame.size();
@@ -194,6 +207,7 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     const cv::Rect2d box = *pending_box_ & cv::Rect2d(0, 0, frame.cols, frame.rows);
     pending_box_.reset();
     if (box.width >= 2 && box.height >= 2) {
+      track_body_ = p_.body();  // a manual box's face re-check uses the preset ratios
       start(frame, box, InitSource::kManual);
       return out_;
     }

@@ -7,12 +7,14 @@
 // No LCM, no clock: one frame in, one TrackOutput out; the same frames give the same outputs.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include <opencv2/core.hpp>
 
+#include "body_fit.hpp"
 #include "dsst.hpp"
 #include "face_detector.hpp"
 #include "tracker_params.hpp"
@@ -32,6 +34,9 @@ struct TrackOutput {
   //! face and on each re-check frame where the face is found (re-anchored or not), manual tracks included;
   //! empty on every other frame.
   std::optional<cv::Rect2d> face;
+  //! A face the search found in THIS frame and did not start a track on (its body box failed the image
+  //! check, body_fit.hpp); kNone on every other frame.
+  FaceRefusal refused = FaceRefusal::kNone;
 };
 
 class UserTracker {
@@ -50,6 +55,10 @@ class UserTracker {
 
   const TrackOutput& last() const { return out_; }
   int bad_frames() const { return bad_frames_; }
+  //! Faces refused for this reason since construction (HEALTH).
+  int64_t refusals(FaceRefusal why) const { return refusals_[static_cast<size_t>(why)]; }
+  //! The ratios of the current track's body box to its face (the preset, or fitted when it started on a face).
+  const BodyProportions& track_body() const { return track_body_; }
 
  private:
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
@@ -69,6 +78,8 @@ class UserTracker {
   TrackOutput out_;
   cv::Rect2d last_good_box_;
   DsstEstimate last_good_estimate_;  //!< the filter's last estimate with PSR >= redetect_psr (re-detection starts there)
+  BodyProportions track_body_;  //!< the track's body box / face ratios (the re-check re-anchors with them)
+  std::array<int64_t, kFaceRefusals> refusals_{};
   cv::Rect2d box_in_window_{0, 0, 1, 1};  //!< the body box in units of the DSST window (x, y from its corner)
   cv::Size frame_size_;
   int bad_frames_ = 0;

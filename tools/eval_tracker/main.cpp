@@ -24,6 +24,7 @@
 #include <dlib/opencv/cv_image.h>
 #endif
 
+#include "body_fit.hpp"
 #include "dsst.hpp"
 #include "face_detector.hpp"
 #include "json_out.hpp"
@@ -245,7 +246,12 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
       std::optional<cv::Rect2d> box = f.truth;
       if (auto_init) {
         box.reset();
-        if (auto d = faces->detect(f.image)) box = d->body;
+        // The box the tracker would start on: the face's body box checked and fitted against the image
+        // (body_fit.hpp; a refused face starts nothing), clipped to the frame as the detector's.
+        if (auto d = faces->detect(f.image)) {
+          const BodyFit fit = fit_body(f.image, d->face, params.body(), params.body_fit);
+          if (fit.refused == FaceRefusal::kNone) box = fit.box & cv::Rect2d(0, 0, f.image.cols, f.image.rows);
+        }
       }
       if (!box && !auto_init && frames == 1) throw std::runtime_error("the first frame has no ground-truth box to start from");
       if (box) {

@@ -1,0 +1,215 @@
+// The body box of a face checked and fitted against the image (see body_fit.hpp).
+#include "body_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+namespace gpilot {
+
+const char* refusal_text(FaceRefusal r) {
+  switch (r) {
+    case FaceRefusal::kNone: return "";
+    case FaceRefusal::kOffFrame: return "body box mostly outside the frame";
+    case FaceRefusal::kNoTorso: return "no torso in view under the face";
+    case FaceRefusal::kNoBodyColour: return "no body under the face (torso colours are the background's)";
+  }
+  return "";
+}
+
+namespace {
+
+double area(const cv::Rect2d& r) { return r.width > 0 && r.height > 0 ? r.width * r.height : 0.0; }
+
+// Colour histograms over rectangles of one image, each normalised to sum 1 (all zero when empty).
+class Histograms {
+ public:
+  Histograms(const cv::Mat& img, int n) : n_(img.channels() == 3 ? n * n * n : n) {
+    bins_.create(img.size(), CV_32S);
+    for (int y = 0; y < img.rows; ++y) {
+      int* out = bins_.ptr<int>(y);
+      if (img.channels() == 3) {
+        const cv::Vec3b* px = img.ptr<cv::Vec3b>(y);
+        for (int x = 0; x < img.cols; ++x)
+          out[x] = (px[x][0] * n / 256 * n + px[x][1] * n / 256) * n + px[x][2] * n / 256;
+      } else {
+        const uint8_t* px = img.ptr<uint8_t>(y);
+        for (int x = 0; x < img.cols; ++x) out[x] = px[x] * n / 256;
+      }
+    }
+  }
+  int bins() const { return n_; }
+  int bin(int x, int y) const { return bins_.at<int>(y, x); }
+  // Sum over rects (clipped to the image), normalised. Returns the pixels counted.
+  double of(std::initializer_list<cv::Rect> rects, std::vector<double>& h) const {
+    h.assign(static_cast<size_t>(n_), 0.0);
+    double count = 0;
+    for (const cv::Rect& r0 : rects) {
+      const cv::Rect r = r0 & cv::Rect(0, 0, bins_.cols, bins_.rows);
+      for (int y = r.y; y < r.br().y; ++y)
+        for (int x = r.x; x < r.br().x; ++x) h[static_cast<size_t>(bins_.at<int>(y, x))] += 1.0;
+      count += r.area();
+    }
+    if (count > 0)
+      for (double& v : h) v /= count;
+    return count;
+  }
+
+ private:
+  int n_;
+  cv::Mat bins_;
+};
+
+}  // namespace
+
+BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProportions& preset, const BodyFitParams& p) {
+  BodyFit f;
+  f.body = preset;
+  f.box = body_from_face(face, preset);
+  const cv::Rect2d b = f.box;
+  const cv::Rect2d frame_rect(0, 0, frame.cols, frame.rows);
+  if (frame.empty() || area(face) <= 0 || area(b) <= 0) {
+    f.refused = FaceRefusal::kOffFrame;
+    return f;
+  }
+  f.in_frame = area(b & frame_rect) / area(b);
+  if (f.in_frame < p.min_in_frame) {
+    f.refused = FaceRefusal::kOffFrame;
+    return f;
+  }
+  const double fw = face.width, fh = face.height;
+  const double cx = face.x + fw / 2, chin = face.y + fh, bx = b.x + b.width / 2;
+  const cv::Rect2d torso(cx - p.torso_half_width_in_faces * fw, chin + p.torso_gap_in_faces * fh,
+                         2 * p.torso_half_width_in_faces * fw, p.torso_height_in_faces * fh);
+  if (area(torso & frame_rect) < p.min_torso_in_frame * area(torso)) {
+    f.refused = FaceRefusal::kNoTorso;
+    return f;
+  }
+  const bool fit = p.fit_min < 1.0 || p.fit_max > 1.0;
+  if (p.min_separation <= 0 && !fit) return f;
+
+  // What is read: from the chin down to the largest fitted bottom, the largest fitted width and the strips
+  // beside the box, in a copy where the face is at most fit_face_px wide (the cost does not grow with the face).
+  // The strips beside are outside the largest box the fit may give (a person that wide is not background).
+  const double beside = p.beside_width_in_faces * fw;
+  const double outer = std::max(1.0, p.fit_max) * b.width / 2;
+  const double half = outer + beside;
+  const double bottom = b.y + p.fit_max * b.height;
+  const cv::Rect region = cv::Rect(cv::Rect2d(bx - half, face.y, 2 * half, bottom - face.y)) & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (region.width < 1 || region.height < 1) return f;
+  const double s = std::min(1.0, p.fit_face_px / fw);
+  cv::Mat img;
+  if (s < 1.0)
+    cv::resize(frame(region), img,
+               cv::Size(std::max(1, static_cast<int>(std::lround(region.width * s))), std::max(1, static_cast<int>(std::lround(region.height * s)))),
+               0, 0, cv::INTER_AREA);
+  else
+    img = frame(region);
+  const double sx = img.cols / static_cast<double>(region.width), sy = img.rows / static_cast<double>(region.height);
+  const auto to_img = [&](const cv::Rect2d& r) {
+    return cv::Rect(cv::Rect2d((r.x - region.x) * sx, (r.y - region.y) * sy, r.width * sx, r.height * sy)) &
+           cv::Rect(0, 0, img.cols, img.rows);
+  };
+  const Histograms hist(img, p.bins_per_channel);
+
+  // Evidence: the torso sample's colours against the strips beside the box at the same height.
+  const cv::Rect torso_i = to_img(torso);
+  const cv::Rect left_i = to_img(cv::Rect2d(bx - half, torso.y, beside, torso.height));
+  const cv::Rect right_i = to_img(cv::Rect2d(bx + outer, torso.y, beside, torso.height));
+  std::vector<double> t, bg;
+  const double torso_px = hist.of({torso_i}, t);
+  const double beside_px = hist.of({left_i, right_i}, bg);
+  if (torso_px <= 0) {  // none of it in view (only possible with min_torso_in_frame 0: then no evidence, the preset)
+    if (p.min_torso_in_frame > 0) f.refused = FaceRefusal::kNoTorso;
+    return f;
+  }
+  if (beside_px <= 0) return f;  // a person filling the frame's width: nothing to compare with, nothing to fit to
+  double bc = 0;
+  for (size_t i = 0; i < t.size(); ++i) bc += std::sqrt(t[i] * bg[i]);
+  f.separation = 1.0 - bc;
+  if (p.min_separation > 0 && f.separation < p.min_separation) {
+    f.refused = FaceRefusal::kNoBodyColour;
+    return f;
+  }
+  if (!fit || f.separation < p.fit_min_separation) return f;
+
+  // P(person | colour): the centre band under the face (torso and legs, if the box is right) and the face's
+  // middle (the skin of bare arms and hands) against the strips beside the box over the same rows; a colour
+  // seen in neither is undecided (0.5). A skin-coloured wall is in the strips too, so it stays background.
+  const cv::Rect2d band(torso.x, torso.y, torso.width, b.br().y - torso.y);
+  const cv::Rect band_i = to_img(band);
+  const double k = p.skin_sample_in_faces;
+  const cv::Rect skin_i = to_img(cv::Rect2d(cx - k * fw / 2, face.y + fh / 2 - k * fh / 2, k * fw, k * fh));
+  std::vector<double> fg, back;
+  hist.of({band_i, skin_i}, fg);
+  hist.of({to_img(cv::Rect2d(bx - half, chin, beside, b.br().y - chin)), to_img(cv::Rect2d(bx + outer, chin, beside, b.br().y - chin))}, back);
+  std::vector<uint8_t> person(static_cast<size_t>(hist.bins()));
+  for (size_t i = 0; i < person.size(); ++i) {
+    const double pp = fg[i] + back[i] > 0 ? fg[i] / (fg[i] + back[i]) : 0.5;
+    person[i] = pp >= p.fit_person_p ? 1 : 0;
+  }
+  const auto is_person = [&](int x, int y) { return person[static_cast<size_t>(hist.bin(x, y))] != 0; };
+
+  // Width: from the face's column out, while the chest band's columns are the person's. A side that runs into
+  // the frame's edge is not seen (the other side's half-width stands for it).
+  const auto column_is_person = [&](int x) {
+    int n = 0;
+    for (int y = torso_i.y; y < torso_i.br().y; ++y) n += is_person(x, y);
+    return torso_i.height > 0 && n >= p.fit_column_fraction * torso_i.height;
+  };
+  const int c0 = std::clamp(static_cast<int>(std::floor((cx - region.x) * sx)), 0, img.cols - 1);
+  int left = c0, right = c0;
+  const bool centre = column_is_person(c0);  // else the chest band under the face is no silhouette to follow
+  while (centre && left > 0 && column_is_person(left - 1)) --left;
+  while (centre && right < img.cols - 1 && column_is_person(right + 1)) ++right;
+  const bool left_seen = centre && !(left == 0 && region.x == 0);
+  const bool right_seen = centre && !(right == img.cols - 1 && region.br().x == frame.cols);
+  const double left_x = region.x + left / sx, right_x = region.x + (right + 1) / sx;
+  // The box keeps a margin beside the arms at rest: a silhouette silhouette_width_in_box of the preset's width
+  // is the preset.
+  const double expected = p.silhouette_width_in_box * b.width;
+  f.width_seen = left_seen || right_seen;
+  if (left_seen && right_seen) {
+    f.width_ratio = (right_x - left_x) / expected;
+    f.shift = ((left_x + right_x) / 2 - cx) / fw;
+  } else if (left_seen) {
+    f.width_ratio = 2 * (cx - left_x) / expected;
+  } else if (right_seen) {
+    f.width_ratio = 2 * (right_x - cx) / expected;
+  }
+
+  // Bottom: down the centre band while its rows are the person's (gaps up to fit_gap_in_faces bridged). Rows
+  // that run into the frame's bottom edge leave the height unseen (the preset's).
+  const auto row_is_person = [&](int y) {
+    int n = 0;
+    for (int x = band_i.x; x < band_i.br().x; ++x) n += is_person(x, y);
+    return band_i.width > 0 && n >= p.fit_row_fraction * band_i.width;
+  };
+  const int gap = static_cast<int>(std::floor(p.fit_gap_in_faces * fh * sy));
+  int last = -1;
+  for (int y = std::max(0, torso_i.y); y < img.rows && y - std::max(last, torso_i.y) <= gap + 1; ++y)
+    if (row_is_person(y)) last = y;
+  if (last >= 0) {
+    const bool to_edge = last == img.rows - 1 && region.br().y == frame.rows;
+    f.height_seen = !to_edge;
+    if (f.height_seen) f.height_ratio = (region.y + (last + 1) / sy - b.y) / b.height;
+  }
+
+  // Applied only beyond fit_tolerance (the preset is right for most people), within [fit_min, fit_max].
+  const auto settle = [&](double r) {
+    return std::abs(std::log(r)) <= std::log1p(p.fit_tolerance) ? 1.0 : std::clamp(r, p.fit_min, p.fit_max);
+  };
+  const double wr = f.width_seen ? settle(std::max(f.width_ratio, 1e-3)) : 1.0;
+  const double hr = f.height_seen ? settle(std::max(f.height_ratio, 1e-3)) : 1.0;
+  const double shift = std::abs(f.shift * fw) <= p.fit_tolerance * b.width ? 0.0
+                                                                           : std::clamp(f.shift, -p.max_shift_in_faces, p.max_shift_in_faces);
+  f.body.width_in_faces *= wr;
+  f.body.height_in_faces *= hr;
+  if (shift != 0.0) f.body.centre_in_faces = shift;
+  f.box = body_from_face(face, f.body);
+  return f;
+}
+
+}  // namespace gpilot
