@@ -41,6 +41,9 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   const auto row = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
   g.face_rows_end = row(y + p.face_remove_ratio * h);
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
+  const double half = g.hand_side / 2.0;
+  g.body_centre_in_view = g.body_centre.x - half >= 0 && g.body_centre.y - half >= 0 && g.body_centre.x + half <= image.width &&
+                          g.body_centre.y + half <= image.height;
   g.valid = g.box.width >= 4 && g.box.height >= 4;
   return g;
 }
@@ -270,7 +273,8 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
     set(HandKind::Out, p_out, f_out, g.shoulder_centre);
   } else if (res.skin_inside > 0 && std::abs(bcx - p_front.x) < params_.front_gate_ratio * g.width &&
              f_front > params_.front_min_skin) {
-    set(HandKind::Front, p_front, f_front, g.body_centre);
+    if (params_.front_needs_body_centre && !g.body_centre_in_view) res.front_out_of_view = true;
+    else set(HandKind::Front, p_front, f_front, g.body_centre);
   }
   return res;
 }

@@ -9,7 +9,9 @@
 // Ours, on top (each a config value, 0 = off): skin components with more than a few hand squares outside the
 // user box are dropped (walls, wood); Alg. 1 counts only skin within reach of a shoulder and, below the shoulder line, far enough
 // from straight down that a hanging forearm is not a stretched-out arm; and an OUT hand must hang on an arm:
-// arm-coloured pixels (skin, the user's clothing) join it to the torso (not a sign, a dome, someone's face).
+// arm-coloured pixels (skin, the user's clothing) join it to the torso (not a sign, a dome, someone's face);
+// and Alg. 2 judges a hand only while the body centre is in the image (higher/lower than a centre out of view
+// is unknown: a resting hand at the frame's bottom edge is above a centre below the frame).
 // Pure: no LCM, no clock. Image axes: x right, y down, pixels.
 #pragma once
 
@@ -37,6 +39,7 @@ struct HandGeometry {
   int open_radius = 0;          //!< skin mask opening radius, pixels (0 = none)
   int face_rows_end = 0;        //!< box rows y < this are removed (face, neck)
   int legs_rows_begin = 0;      //!< box rows y >= this are removed (legs, feet)
+  bool body_centre_in_view = false;  //!< p_bc and the hand square around it lie inside the image
   bool valid = false;           //!< false for a box too small or off the image
 };
 
@@ -56,6 +59,7 @@ struct HandResult {
   int blobs_dropped = 0;         //!< skin components too large for a hand
   int armless_dropped = 0;       //!< Alg. 1 candidates dropped: no arm from the shoulder to them
   int upright_dropped = 0;       //!< Alg. 2 candidates dropped: a forearm hanging at the torso's edge
+  bool front_out_of_view = false;  //!< Alg. 2 found a hand but the body centre is out of the image: not judged
 };
 
 class HandDetector {

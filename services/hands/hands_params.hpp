@@ -110,6 +110,9 @@ struct HandsParams {
   double arm_radius_ratio = 0.03;    //!< gaps up to twice this many box widths along the arm are closed
   double front_max_upright = 2.5;    //!< Alg. 2: a skin component this many times taller than wide that reaches
                                      //!< below the body centre is a hanging forearm, not a hand in front (0 = off)
+  bool front_needs_body_centre = true;  //!< Alg. 2: a hand in front is judged only while p_bc (and the hand square
+                                        //!< around it) is in the image: with the body centre below the frame (the
+                                        //!< drone high and close), a resting hand at the bottom edge is "higher"
   // The face the tracker found is the surest reference on real people (a person box may hold stretched-out
   // arms or end at the image edge): when one is given, the box the stage works on is made from it with the
   // tracker's head-body ratios (tracker.body_*_in_faces).
@@ -140,6 +143,7 @@ struct HandsParams {
     v("arm_connected", arm_connected, "Alg. 1: the hand must be joined to the torso by skin or clothing colours (ours)");
     v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
+    v("front_needs_body_centre", front_needs_body_centre, "Alg. 2: no FRONT hand while the body centre is out of the image (ours)");
     v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }
   void check(const ParamCheck& c) const {

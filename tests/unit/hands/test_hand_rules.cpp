@@ -140,3 +140,31 @@ TEST_F(RulesTest, AForearmHangingAtTheTorsosEdgeIsNotAHandInFront) {
   EXPECT_LT(r.vector.y, 0);
   EXPECT_EQ(r.upright_dropped, 0);
 }
+
+TEST_F(RulesTest, AHandInFrontIsNotJudgedWhileTheBodyCentreIsOutOfTheImage) {
+  // GIVEN skin at x 132..147, y 150..165 in the box, centred on p_bc.x = 140 and above p_bc.y = 180: a hand in
+  // front, higher (256 pixels, F_skin 256 > 30, |dx| < w/5 = 16)
+  const cv::Rect hand(132, 150, 16, 16);
+  mask(hand).setTo(1);
+  auto r = on_mask();
+  EXPECT_EQ(r.kind, HandKind::Front);
+  EXPECT_LT(r.vector.y, 0);
+  EXPECT_FALSE(r.front_out_of_view);
+  // WHEN the frame ends at row 185, above p_bc + half a hand square (180 + 10): the drone high and close, the
+  // user's hips below the frame. THEN a hand at the bottom edge cannot be told higher from lower: no hand
+  const cv::Size cut(400, 185);
+  SkinHistogram h(2);
+  h.add(0, 0, 0, true);
+  h.add(255, 255, 255, false);
+  HandDetector d(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
+  const cv::Mat cut_mask = mask(cv::Rect(0, 0, cut.width, cut.height)).clone();
+  r = d.detect_on_mask(cut_mask, {0, 0}, hand_geometry(params, kBox, cut));
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_TRUE(r.front_out_of_view);
+  // AND with the rule off THEN the paper's Alg. 2 reads it as higher (CLOSER)
+  params.front_needs_body_centre = false;
+  HandDetector paper(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
+  r = paper.detect_on_mask(cut_mask, {0, 0}, hand_geometry(params, kBox, cut));
+  EXPECT_EQ(r.kind, HandKind::Front);
+  EXPECT_LT(r.vector.y, 0);
+}
