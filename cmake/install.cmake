@@ -46,3 +46,40 @@ write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/gesture_pilotConfig
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/package/gesture_pilotConfig.cmake
               ${CMAKE_BINARY_DIR}/package/gesture_pilotConfigVersion.cmake DESTINATION ${_cmakedir})
+
+# The .deb: `cpack -G DEB` in build/ makes gesture-pilot_<version>_<arch>.deb, installed under /usr.
+# Depends: the shared libraries the binaries link (dpkg-shlibdeps, so they cannot drift from the build) and
+# deploy/runtime-packages (data and programs used at run time; deploy/setup installs the same list).
+set(GPILOT_DEB_PREFIX /usr)
+set(GPILOT_DEB_BINDIR ${GPILOT_DEB_PREFIX}/${CMAKE_INSTALL_BINDIR})
+set(GPILOT_DEB_DATADIR ${GPILOT_DEB_PREFIX}/${GPILOT_INSTALL_DATADIR})
+configure_file(cmake/deb/postinst.in ${CMAKE_BINARY_DIR}/deb/postinst @ONLY
+               FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE WORLD_READ WORLD_EXECUTE)
+file(STRINGS deploy/runtime-packages _runtime REGEX "^[a-z0-9]")
+set(_depends)
+foreach(_line IN LISTS _runtime)
+  string(REGEX MATCH "^[^ \t#]+" _pkg "${_line}")
+  list(APPEND _depends ${_pkg})
+endforeach()
+list(JOIN _depends ", " CPACK_DEBIAN_PACKAGE_DEPENDS)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/deploy/runtime-packages)
+
+# cpack and `make install` pack what is built and build nothing themselves (build first: cmake --build): a
+# package made while others build in the same tree must not start a second compile beside theirs.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME gesture-pilot)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_CONTACT "gesture-pilot maintainers <gesture-pilot@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "fly a drone by arm gestures (LCM stages, systemd units, message types)")
+set(CPACK_PACKAGING_INSTALL_PREFIX ${GPILOT_DEB_PREFIX})
+set(CPACK_STRIP_FILES ON)  # the build keeps -g1; the drone needs no debug info
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # gesture-pilot_<version>_<arch>.deb
+set(CPACK_DEBIAN_PACKAGE_SECTION misc)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3")  # reading logs with the installed Python types
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "liblcm-java, default-jre, libjchart2d-java")  # lcm-spy with the types' jar
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_BINARY_DIR}/deb/postinst ${CMAKE_SOURCE_DIR}/cmake/deb/prerm
+    ${CMAKE_SOURCE_DIR}/cmake/deb/postrm)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
+include(CPack)
