@@ -3,9 +3,10 @@
 # Usage: test_install.sh SOURCE_DIR BUILD_DIR   (ctest: install_tree; the binaries must be built)
 #   1. installs BUILD_DIR into a temporary prefix and moves the tree elsewhere (no path is compiled in);
 #   2. in a private mount and network namespace in which SOURCE_DIR and BUILD_DIR are empty folders, from an
-#      empty working directory (the build tree hidden first: it may be inside the checkout): gpilot-config --defaults prints the installed default.yaml; gpilot-eval-hands
-#      --scenario tour gives the build tree's answer; a binary whose share/ is missing fails (so the checkout
-#      really is out of reach); a CMake project finds gesture_pilot and builds against its types; a short
+#      empty working directory (the build tree hidden first: it may be inside the checkout): gpilot-config
+#      --defaults and gpilot-eval-hands --scenario tour give the build tree's answers; the installed
+#      default.yaml is accepted; a binary whose share/ is missing fails (so the checkout really is out of
+#      reach); a CMake project finds gesture_pilot and builds against its types; a short
 #      pipeline (gpilot-launch, scenario tour, simulator) writes a log that the installed Python types read.
 #   The installed systemd units pass systemd-analyze verify (where it exists).
 # Exits 77 (ctest: skipped) where no namespace can be made.
@@ -41,9 +42,10 @@ if [ "${GPILOT_INSTALL_TEST_INNER:-}" != 1 ]; then
   # The units name the prefix they were installed into (the one place a path is written at install time).
   grep -q "^ExecStart=$tmp/first/bin/gpilot-flight " "$p/lib/systemd/system/gpilot-flight.service" \
     || fail "the units do not run the installed binaries"
-  # The answer the installed eval must give: the build tree's (timings aside).
+  # The answers the installed binaries must give: the build tree's (timings aside).
   (cd "$tmp" && "$build/bin/gpilot-eval-hands" --scenario tour --stride 50 --png-dir '' --json 2>/dev/null) \
     > "$tmp/eval-build.json" || fail "gpilot-eval-hands from the build tree"
+  "$build/bin/gpilot-config" --defaults > "$tmp/defaults-build.yaml" || fail "gpilot-config from the build tree"
   inner="mount -t tmpfs none \"\$2\" && mount -t tmpfs none \"\$1\" && ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec \"\$0\" \"\$@\""
   cp "$0" "$tmp/test_install.sh"  # this script is in the checkout, which is about to disappear
   export GPILOT_INSTALL_TEST_INNER=1 GPILOT_INSTALL_TEST_TMP="$tmp"
@@ -65,7 +67,9 @@ done
 mkdir "$tmp/work" && cd "$tmp/work"
 
 "$p/bin/gpilot-config" --defaults > defaults.yaml || fail "gpilot-config --defaults"
-cmp -s defaults.yaml "$s/deploy/config/default.yaml" || fail "gpilot-config --defaults differs from the installed default.yaml"
+cmp -s defaults.yaml "$tmp/defaults-build.yaml" || fail "installed gpilot-config --defaults differs from the build tree's"
+"$p/bin/gpilot-config" --config "$s/deploy/config/default.yaml" > /dev/null 2>&1 \
+  || fail "installed gpilot-config does not accept the installed default.yaml"
 
 "$p/bin/gpilot-eval-hands" --scenario tour --stride 50 --png-dir '' --json 2> eval.err > eval.json \
   || { cat eval.err >&2; fail "installed gpilot-eval-hands --scenario tour"; }
