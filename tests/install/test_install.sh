@@ -5,7 +5,7 @@
 #   2. in a private mount and network namespace in which SOURCE_DIR and BUILD_DIR are empty folders, from an
 #      empty working directory (the build tree hidden first: it may be inside the checkout): gpilot-config
 #      --defaults and gpilot-eval-hands --scenario tour give the build tree's answers; the installed
-#      default.yaml is accepted; a binary whose share/ is missing fails (so the checkout really is out of
+#      default.yaml is accepted; every installed scenario loads; a binary whose share/ is missing fails (so the checkout really is out of
 #      reach); a CMake project finds gesture_pilot and builds against its types; a short
 #      pipeline (gpilot-launch, scenario tour, simulator) writes a log that the installed Python types read.
 #   The installed systemd units pass systemd-analyze verify (where it exists).
@@ -80,6 +80,13 @@ for d in (a, b):
     for k in [k for k in d if k.startswith("ms_per_frame")]: del d[k]
 assert a == b and a["frames"] > 0, (a, b)
 PY
+# Every installed scenario loads (its backdrop, face and skin tones are installed too).
+for f in "$s"/deploy/scenarios/*.yaml; do
+  n="$(basename "$f" .yaml)"
+  "$p/bin/gpilot-eval-hands" --scenario "$n" --stride 500 --png-dir '' --json 2> /dev/null > scenario.json \
+    && python3 -c 'import json,sys; assert json.load(open(sys.argv[1]))["frames"] > 0' scenario.json \
+    || fail "installed gpilot-eval-hands --scenario $n"
+done
 # Negative control: the same binary without its share/ has no data to fall back on.
 mkdir -p bare/bin && cp "$p/bin/gpilot-eval-hands" bare/bin/
 if bare/bin/gpilot-eval-hands --scenario tour --stride 50 --png-dir '' > /dev/null 2>&1; then
