@@ -119,15 +119,20 @@ void HandDetector::erase_component(const HandGeometry& g, cv::Point pixel) {
   cv::floodFill(mask_, pixel - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
 }
 
+cv::Rect HandDetector::torso_rect(const HandGeometry& g) const {
+  const int inset = static_cast<int>(std::lround(params_.torso_inset_ratio * g.box.width));
+  return cv::Rect(cv::Point(g.box.x + inset, std::max(g.box.y, g.face_rows_end)),
+                  cv::Point(g.box.br().x - inset, std::min(g.box.br().y, static_cast<int>(g.body_centre.y))));
+}
+
 void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g) {
-  // The clothing between the face band and the body centre, in the middle 60 % of the box: a sleeve is the same.
+  // The clothing of the torso (torso_rect): a sleeve is the same.
   torso_hist_.assign(kTorsoBins * kTorsoBins * kTorsoBins, 0);
   torso_pixels_ = 0;
-  const int x0 = g.box.x + g.box.width / 5, x1 = g.box.br().x - g.box.width / 5;
-  const int y0 = std::max(g.box.y, g.face_rows_end), y1 = std::min(g.box.br().y, static_cast<int>(g.body_centre.y));
-  for (int y = y0; y < y1; ++y) {
-    const uint8_t* p = bgr.ptr<uint8_t>(y) + 3 * x0;
-    for (int x = x0; x < x1; ++x, p += 3) {
+  const cv::Rect t = torso_rect(g);
+  for (int y = t.y; y < t.br().y; ++y) {
+    const uint8_t* p = bgr.ptr<uint8_t>(y) + 3 * t.x;
+    for (int x = t.x; x < t.br().x; ++x, p += 3) {
       ++torso_hist_[static_cast<size_t>(torso_bin(p))];
       ++torso_pixels_;
     }
@@ -155,10 +160,8 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const HandGeometry& g, cv::Poin
   const cv::Point seed = hand - g.roi.tl();
   if (!cv::Rect(0, 0, arm_.cols, arm_.rows).contains(seed) || !arm_.at<uint8_t>(seed)) return false;
   cv::floodFill(arm_, seed, cv::Scalar(2), nullptr, cv::Scalar(), cv::Scalar(), 8);
-  // Reached the torso: the band between the face rows and the body centre, across the box.
-  const cv::Rect torso = cv::Rect(cv::Point(g.box.x, std::max(g.box.y, g.face_rows_end)),
-                                  cv::Point(g.box.br().x, std::min(g.box.br().y, static_cast<int>(g.body_centre.y)))) &
-                         g.roi;
+  // Reached the torso itself, not the box's margins beside it (a skin-coloured wall there touches the box).
+  const cv::Rect torso = torso_rect(g) & g.roi;
   if (torso.empty()) return false;
   const cv::Mat band = arm_(torso - g.roi.tl());
   for (int y = 0; y < band.rows; ++y) {

@@ -108,6 +108,8 @@ struct HandsParams {
   bool arm_connected = true;         //!< Alg. 1: the hand must be joined to the torso by skin or the torso's
                                      //!< clothing colours (an arm, bent or straight, bare or in sleeves)
   double arm_radius_ratio = 0.03;    //!< gaps up to twice this many box widths along the arm are closed
+  double torso_inset_ratio = 0.2;    //!< the torso is the box less this many box widths each side: its colours
+                                     //!< are the clothing's, and an arm must reach it (the box's margins are scenery)
   double front_max_upright = 2.5;    //!< Alg. 2: a skin component this many times taller than wide that reaches
                                      //!< below the body centre is a hanging forearm, not a hand in front (0 = off)
   bool front_needs_body_centre = true;  //!< Alg. 2: a hand in front is judged only while p_bc (and the hand square
@@ -142,6 +144,7 @@ struct HandsParams {
     v("out_min_angle_deg", out_min_angle_deg, 0.0, 90.0, "Alg. 1: hand below the shoulders this far from straight down at least (0 = off; ours)");
     v("arm_connected", arm_connected, "Alg. 1: the hand must be joined to the torso by skin or clothing colours (ours)");
     v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
+    v("torso_inset_ratio", torso_inset_ratio, 0.0, 0.45, "torso = box less this many box widths each side (arm_connected; ours)");
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
     v("front_needs_body_centre", front_needs_body_centre, "Alg. 2: no FRONT hand while the body centre is out of the image (ours)");
     v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");

@@ -168,3 +168,28 @@ TEST_F(RulesTest, AHandInFrontIsNotJudgedWhileTheBodyCentreIsOutOfTheImage) {
   EXPECT_EQ(r.kind, HandKind::Front);
   EXPECT_LT(r.vector.y, 0);
 }
+
+TEST_F(RulesTest, AnArmMustReachTheTorsoNotTheBoxMarginBesideIt) {
+  // GIVEN a green shirt on the torso (the box less 0.2 w = 16 px each side: x 116..163, rows 132..179) and a
+  // hand-sized skin patch right of the box (x 190..204, y 150..164) joined by a skin strip (x 170..189, y 155..158)
+  // that ends in the box's right margin, 6 px short of the shirt: a skin-coloured thing beside the user that
+  // touches the box, not an arm (the arm closing, 2 r = 4 px, does not bridge 6)
+  const cv::Scalar kGreen(60, 140, 40);
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(116, 132, 48, 48), kGreen, cv::FILLED);
+  cv::rectangle(frame, cv::Rect(190, 150, 15, 15), kSkin, cv::FILLED);
+  cv::rectangle(frame, cv::Rect(170, 155, 20, 4), kSkin, cv::FILLED);
+  auto r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_GE(r.armless_dropped, 1);
+  // WHEN the torso is the whole box width (inset 0) THEN the strip reaches it and the patch is taken for a hand
+  params.torso_inset_ratio = 0;
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Out);
+  // AND WHEN the strip reaches the shirt (an arm) THEN OUT with the inset too
+  params.torso_inset_ratio = 0.2;
+  cv::rectangle(frame, cv::Rect(160, 155, 30, 4), kSkin, cv::FILLED);
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Out);
+  EXPECT_GT(r.vector.x, 0);
+}
