@@ -104,7 +104,7 @@ BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProport
   if (s < 1.0)
     cv::resize(frame(region), img,
                cv::Size(std::max(1, static_cast<int>(std::lround(region.width * s))), std::max(1, static_cast<int>(std::lround(region.height * s)))),
-               0, 0, cv::INTER_AREA);
+               0, 0, cv::INTER_LINEAR);  // not INTER_AREA: that reads every pixel (5 ms for a 240 px face)
   else
     img = frame(region);
   const double sx = img.cols / static_cast<double>(region.width), sy = img.rows / static_cast<double>(region.height);

@@ -112,11 +112,13 @@ struct BodyFitParams {
   double fit_min_separation = 0.5;     //!< weaker colour evidence (still a body) keeps the preset box
   double fit_min = 0.6;                //!< smallest fitted width or height, fraction of the preset
   double fit_max = 1.3;                //!< largest fitted width or height, fraction of the preset
-  double fit_tolerance = 0.15;         //!< a fitted side within this fraction of the preset keeps the preset
+  // The synthetic person's chest silhouette over every scenario is 0.87..1.11 of the preset's: 0.15 left
+  // the box of some frames of `nuisances` 13 % narrower than the box the hands rules were tuned on.
+  double fit_tolerance = 0.2;          //!< a fitted side within this fraction of the preset keeps the preset
   double skin_sample_in_faces = 0.5;   //!< the face box's middle (this fraction of its sides) is the person's colours too
   // The preset box is wider than the person's silhouette at the chest (arms at the sides): a margin for the
-  // arms to move. The synthetic person's silhouette is 0.67..0.82 of the preset width over the tour (the box
-  // the hands rules were tuned on), Messi's (messi5.jpg) 0.85.
+  // arms to move. The synthetic person's silhouette is 0.65..0.83 of the preset width over the scenarios (the
+  // box the hands rules were tuned on), Messi's (messi5.jpg) 0.85.
   double silhouette_width_in_box = 0.75;  //!< the chest silhouette's width that gives the preset width, fraction of it
   double fit_person_p = 0.5;           //!< a pixel is the person's when P(person | colour) is at least this
   double fit_column_fraction = 0.5;    //!< a chest column is the person's when this fraction of it is
