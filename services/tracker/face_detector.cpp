@@ -29,8 +29,19 @@ FaceDetector::FaceDetector(const TrackerParams& params) : p_(params) {
     throw std::runtime_error("face cascade '" + path + "' is missing or not a cascade (package opencv-data)");
 }
 
-std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
-  if (frame.empty()) return std::nullopt;
+namespace {
+std::optional<FaceDetection> first(const std::vector<FaceDetection>& faces) {
+  if (faces.empty()) return std::nullopt;
+  return faces.front();
+}
+}  // namespace
+
+std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) { return first(detect_all(frame)); }
+std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv::Rect& roi) { return first(detect_all(frame, roi)); }
+std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) { return first(scan_step_all(frame)); }
+
+std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame) {
+  if (frame.empty()) return {};
   if (frame.channels() == 3)
     cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
   else
@@ -47,21 +58,24 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) {
   std::vector<cv::Rect> faces;
   const int min_px = p_.face.min_face_px;
   cascade_.detectMultiScale(*img, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px));
-  return best_of(faces, k, cv::Point(), frame);
+  return sorted_of(faces, k, cv::Point(), frame);
 }
 
-std::optional<FaceDetection> FaceDetector::best_of(const std::vector<cv::Rect>& faces, double k, cv::Point offset,
+std::vector<FaceDetection> FaceDetector::sorted_of(std::vector<cv::Rect> faces, double k, cv::Point offset,
                                                    const cv::Mat& frame) const {
-  if (faces.empty()) return std::nullopt;
-  // The largest face, ties broken by position so that the choice does not depend on detection order.
-  const auto best = std::max_element(faces.begin(), faces.end(), [](const cv::Rect& a, const cv::Rect& b) {
-    if (a.area() != b.area()) return a.area() < b.area();
-    return std::make_pair(a.y, a.x) > std::make_pair(b.y, b.x);
+  // The largest face first, ties broken by position so that the order does not depend on detection order.
+  std::sort(faces.begin(), faces.end(), [](const cv::Rect& a, const cv::Rect& b) {
+    if (a.area() != b.area()) return a.area() > b.area();
+    return std::make_pair(a.y, a.x) < std::make_pair(b.y, b.x);
   });
-  FaceDetection d;
-  d.face = cv::Rect2d((best->x + offset.x) * k, (best->y + offset.y) * k, best->width * k, best->height * k);
-  d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
-  return d;
+  std::vector<FaceDetection> out;
+  for (const cv::Rect& f : faces) {
+    FaceDetection d;
+    d.face = cv::Rect2d((f.x + offset.x) * k, (f.y + offset.y) * k, f.width * k, f.height * k);
+    d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+    out.push_back(d);
+  }
+  return out;
 }
 
 // Octave o searches the frame shrunk by k0 * 2^o for faces of min_face_px .. 2.4 min_face_px (the last octave:
@@ -106,15 +120,15 @@ int FaceDetector::scan_tiles(cv::Size frame_size) {
   return static_cast<int>(jobs_.size());
 }
 
-std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) {
+std::vector<FaceDetection> FaceDetector::scan_step_all(const cv::Mat& frame) {
   last_step_pixels_ = 0;
-  if (frame.empty()) return std::nullopt;
+  if (frame.empty()) return {};
   if (p_.face.scan_slice_pixels <= 0) {
     last_step_pixels_ = static_cast<double>(frame.total());
-    return detect(frame);
+    return detect_all(frame);
   }
   if (frame.size() != jobs_for_) plan_scan(frame.size());
-  if (jobs_.empty()) return std::nullopt;
+  if (jobs_.empty()) return {};
   if (frame.channels() == 3)
     cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
   else
@@ -140,20 +154,21 @@ std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) {
     cascade_.detectMultiScale(small_(job.tile & cv::Rect(cv::Point(), small_.size())), faces, p_.face.scale_factor,
                               p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
                               job.max_face > 0 ? cv::Size(job.max_face, job.max_face) : cv::Size());
-    if (auto d = best_of(faces, job.shrink, job.tile.tl(), frame)) return d;
+    if (!faces.empty()) return sorted_of(faces, job.shrink, job.tile.tl(), frame);
     if (next_job_ == 0) break;  // the scan is complete: the next frame starts it again
   }
-  return std::nullopt;
+  return {};
 }
 
-std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv::Rect& roi) {
+std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
-  if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return std::nullopt;
-  auto d = detect(frame(r));
-  if (!d) return std::nullopt;
-  d->face += cv::Point2d(r.tl());
-  d->body = body_from_face(d->face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
-  return d;
+  if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};
+  std::vector<FaceDetection> all = detect_all(frame(r));
+  for (FaceDetection& d : all) {
+    d.face += cv::Point2d(r.tl());
+    d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+  }
+  return all;
 }
 
 }  // namespace gpilot

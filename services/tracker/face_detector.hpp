@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/objdetect.hpp>
@@ -34,6 +35,10 @@ class FaceDetector {
   std::optional<FaceDetection> detect(const cv::Mat& frame);
   // The same, searching only the part of roi inside frame; boxes in frame pixels.
   std::optional<FaceDetection> detect(const cv::Mat& frame, const cv::Rect& roi);
+  // Every face found, the largest first (ties by position: the order does not depend on the cascade's):
+  // a caller that refuses the largest (a face on a poster) can take the next.
+  std::vector<FaceDetection> detect_all(const cv::Mat& frame);
+  std::vector<FaceDetection> detect_all(const cv::Mat& frame, const cv::Rect& roi);
 
   // One frame's share of a whole-frame search spread over frames, within face.scan_slice_pixels: the next
   // tiles of the scan (octaves of face sizes, large faces first; each octave's faces min_face_px .. 2.4x that
@@ -42,6 +47,7 @@ class FaceDetector {
   // there); a new frame size or restart_scan() (a track started) start the scan over. scan_slice_pixels 0:
   // detect(frame).
   std::optional<FaceDetection> scan_step(const cv::Mat& frame);
+  std::vector<FaceDetection> scan_step_all(const cv::Mat& frame);  //!< every face of that tile, the largest first
   void restart_scan() { next_job_ = 0; }
   //! Tiles in the scan of a frame of this size, and the pixels the last scan_step searched.
   int scan_tiles(cv::Size frame_size);
@@ -54,7 +60,7 @@ class FaceDetector {
     int max_face;   //!< largest face searched, shrunk pixels (0: no bound)
   };
   void plan_scan(cv::Size frame_size);
-  std::optional<FaceDetection> best_of(const std::vector<cv::Rect>& faces, double k, cv::Point offset, const cv::Mat& frame) const;
+  std::vector<FaceDetection> sorted_of(std::vector<cv::Rect> faces, double k, cv::Point offset, const cv::Mat& frame) const;
 
   TrackerParams p_;
   cv::CascadeClassifier cascade_;

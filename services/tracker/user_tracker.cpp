@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 namespace gpilot {
 
@@ -98,30 +99,33 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
 bool UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
   const bool full = out_.status != TrackStatus::kLost || searches_++ % p_.search_full_stride == 0;
-  std::optional<FaceDetection> face;
+  std::vector<FaceDetection> faces;
   if (full) {
-    face = faces_.scan_step(frame);
+    faces = faces_.scan_step_all(frame);
   } else {
     const cv::Rect2d& b = last_good_box_;
     const double g = p_.search_local_scale;
     const cv::Point2d c = (b.tl() + b.br()) * 0.5;
-    face = faces_.detect(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
+    faces = faces_.detect_all(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
   }
-  if (!face) return false;
-  // The body box checked against the image before a track starts on it (body_fit.hpp): a face with no body
-  // in view under it is refused (counted) and the search goes on; else the box fitted to the person.
-  const BodyFit fit = fit_body(frame, face->face, p_.body(), p_.body_fit);
-  if (fit.refused != FaceRefusal::kNone) {
-    ++refusals_[static_cast<size_t>(fit.refused)];
-    out_.refused = fit.refused;
-    return false;
+  // Each face's body box is checked against the image before a track starts on it (body_fit.hpp), the
+  // largest face first: a face with no body in view under it (on a poster, at the bottom edge) is refused
+  // (counted) and the next one tried; else the box is fitted to the person.
+  for (const FaceDetection& face : faces) {
+    const BodyFit fit = fit_body(frame, face.face, p_.body(), p_.body_fit);
+    if (fit.refused != FaceRefusal::kNone) {
+      ++refusals_[static_cast<size_t>(fit.refused)];
+      if (out_.refused == FaceRefusal::kNone) out_.refused = fit.refused;
+      continue;
+    }
+    // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
+    track_body_ = fit.body;
+    start(frame, fit.box, InitSource::kFace);
+    found_face(frame, face.face);
+    faces_.restart_scan();  // the next search (after a loss) scans from the first tile
+    return true;
   }
-  // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
-  track_body_ = fit.body;
-  start(frame, fit.box, InitSource::kFace);
-  found_face(frame, face->face);
-  faces_.restart_scan();  // the next search (after a loss) scans from the first tile
-  return true;
+  return false;
 }
 
 void UserTracker::lose(bool model_trusted) {

@@ -217,14 +217,20 @@ TEST(UserTrackerBodyCheck, FaceAtTheBottomEdgeStartsNoTrack) {
   EXPECT_EQ(search(u, frame, scan).out.status, TrackStatus::kTracking);
 }
 
-TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
-  // GIVEN a poster (a flat pale board) with the astronaut's face printed on it (80 px), at the left of a
-  // 960x540 frame, and the astronaut herself (a 300 px photograph: face about 57 px) at the right
+// A poster (a flat pale board) with the astronaut's face printed on it (80 px), at the left of a 960x540
+// frame, and the astronaut herself (a 300 px photograph: face about 57 px) at the right.
+cv::Mat poster_and_astronaut() {
   cv::Mat frame = test::texture({960, 540}, 11);
   frame(cv::Rect(0, 20, 560, 500)).setTo(cv::Scalar(215, 225, 230));
   const cv::Mat big = astronaut(422);  // face about 80 px at (146, 54)
   big(cv::Rect(138, 46, 96, 96)).copyTo(frame(cv::Rect(232, 72, 96, 96)));
   astronaut(300).copyTo(frame(cv::Rect(620, 120, 300, 300)));
+  return frame;
+}
+
+TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
+  // GIVEN the poster and the astronaut
+  const cv::Mat frame = poster_and_astronaut();
   const TrackerParams p;
   const int scan = FaceDetector(p).scan_tiles(frame.size());
   // WHEN the tracker searches
@@ -248,6 +254,26 @@ TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
   ASSERT_EQ(o.out.status, TrackStatus::kTracking);
   ASSERT_TRUE(o.out.face.has_value());
   EXPECT_LT(o.out.face->x, 560.0) << *o.out.face;
+}
+
+// The same frame searched whole at once (face.scan_slice_pixels 0): both faces come from one search, the
+// printed one first (the larger); it is refused and the next face is tried on the same frame.
+TEST(UserTrackerBodyCheck, TheNextFaceOfTheSameSearchIsTriedAfterARefusal) {
+  TrackerParams p;
+  p.face.scan_slice_pixels = 0;
+  const cv::Mat frame = poster_and_astronaut();
+  UserTracker t(p);
+  const TrackOutput out = t.process(frame);
+  ASSERT_EQ(out.status, TrackStatus::kTracking);
+  EXPECT_EQ(out.refused, FaceRefusal::kNoBodyColour);  // the printed face, refused on this frame
+  EXPECT_EQ(t.refusals(FaceRefusal::kNoBodyColour), 1);
+  ASSERT_TRUE(out.face.has_value());
+  EXPECT_GT(out.face->x, 620.0) << *out.face;
+  // The search's order: the printed face (larger) first.
+  const auto faces = FaceDetector(p).detect_all(frame);
+  ASSERT_GE(faces.size(), 2u);
+  EXPECT_LT(faces[0].face.x, 560.0);
+  EXPECT_GE(faces[0].face.area(), faces[1].face.area());
 }
 
 }  // namespace
