@@ -110,6 +110,8 @@ struct BodyFitParams {
   // centre band's rows stop being. Applied only when it differs from the preset by more than fit_tolerance,
   // clamped to [fit_min, fit_max] of the preset (both 1: no fit); the box stays centred on the face within
   // max_shift_in_faces. The track keeps the fitted ratios (the face re-check re-anchors with them).
+  // real_people: fitting from 0.3 (7 widths fitted) gave a mean IoU with COCO's person box of 0.589, from 0.5
+  // 0.615 (preset 0.606).
   double fit_min_separation = 0.5;     //!< weaker colour evidence (still a body) keeps the preset box
   double fit_min = 0.6;                //!< smallest fitted width or height, fraction of the preset
   double fit_max = 1.3;                //!< largest fitted width or height, fraction of the preset

@@ -28,12 +28,12 @@ struct Drawn {
   cv::Rect2d face;
 };
 Drawn draw_person(cv::Size frame, cv::Point2d face_tl, double fw, double body_w_in_faces, double feet_in_faces,
-                  double waist_in_faces = 3.5) {
+                  double waist_in_faces = 3.5, double body_dx_in_faces = 0.0) {
   Drawn d;
   d.img = test::texture(frame, 7);
   // The background kept away from the clothes' colours (a grey-green texture), as most scenes are.
   d.img.forEach<cv::Vec3b>([](cv::Vec3b& p, const int*) { p = cv::Vec3b(p[0] / 3 + 80, p[1] / 3 + 100, p[1] / 3 + 80); });
-  const double fh = fw * 1.0, cx = face_tl.x + fw / 2;
+  const double fh = fw * 1.0, fx = face_tl.x + fw / 2, cx = fx + body_dx_in_faces * fw;  // face, body centres
   d.face = cv::Rect2d(face_tl.x, face_tl.y, fw, fh);
   const double bw = body_w_in_faces * fw;
   const auto rect = [](double x0, double y0, double x1, double y1) {
@@ -45,7 +45,7 @@ Drawn draw_person(cv::Size frame, cv::Point2d face_tl, double fw, double body_w_
   cv::rectangle(d.img, rect(cx - bw / 2, chin + 0.2 * fh, cx + bw / 2, waist), kShirt, cv::FILLED);
   cv::rectangle(d.img, rect(cx - 0.55 * fw, waist, cx - 0.1 * fw, feet), kTrousers, cv::FILLED);
   cv::rectangle(d.img, rect(cx + 0.1 * fw, waist, cx + 0.55 * fw, feet), kTrousers, cv::FILLED);
-  cv::ellipse(d.img, cv::Point2d(cx, face_tl.y + fh / 2), cv::Size2d(fw / 2, fh / 2), 0, 0, 360, kSkin, cv::FILLED);
+  cv::ellipse(d.img, cv::Point2d(fx, face_tl.y + fh / 2), cv::Size2d(fw / 2, fh / 2), 0, 0, 360, kSkin, cv::FILLED);
   return d;
 }
 
@@ -102,6 +102,23 @@ TEST(BodyFit, WidePersonGetsAWiderBoxWithinTheBound) {
   EXPECT_NEAR(g.box.width, p.fit_max * 110.0, 1e-6);
   EXPECT_NEAR(f.box.height, 280.0, 1e-6);
   EXPECT_NEAR(g.box.height, 280.0, 1e-6);
+}
+
+TEST(BodyFit, BodyBesideTheFaceMovesTheBoxWithinTheBound) {
+  const BodyFitParams p;
+  // GIVEN a person leaning: the body (2.5 face widths wide) centred 0.7 face widths right of the face (28 px
+  // for a 40 px face)
+  const Drawn d = draw_person({640, 480}, {300, 60}, 40, 2.5, 6.75, 3.5, 0.7);
+  const BodyFit f = fit_body(d.img, d.face, kPreset, p);
+  std::printf("beside: separation %.2f shift %.2f face widths, width %.3f (%d)\n", f.separation, f.shift, f.width_ratio, f.width_seen);
+  ASSERT_EQ(f.refused, FaceRefusal::kNone);
+  // THEN the box moves right by max_shift_in_faces (0.5 x 40 = 20 px) and is the body's width (133 px)
+  EXPECT_NEAR(f.shift, 0.7, 0.05);
+  EXPECT_NEAR(f.box.x + f.box.width / 2, 320.0 + p.max_shift_in_faces * 40, 1e-6);
+  EXPECT_NEAR(f.box.width, 133.3, 3.0);
+  // AND a body within the tolerance of the face's centre (0.3 face widths: under 0.2 of the box's width) leaves it
+  const Drawn near = draw_person({640, 480}, {300, 60}, 40, 2.06, 6.75, 3.5, 0.3);
+  EXPECT_EQ(fit_body(near.img, near.face, kPreset, p).box, body_from_face(near.face, kPreset));
 }
 
 TEST(BodyFit, FaceNearTheBottomEdgeIsRefused) {
