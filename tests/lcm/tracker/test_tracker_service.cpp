@@ -2,7 +2,8 @@
 // then real frames on CAMERA; one USER_TRACK per good frame with its seq and utime, boxes identical to the
 // core run in-process over the same frames; malformed CAMERA messages rejected (HEALTH) without a
 // USER_TRACK and without advancing the track. After a reset, a frame with a face: the track it starts carries
-// the face box the core finds. Under load (both cores busy) the stage skips frames, counts them, and its
+// the face box the core finds; a face with its body below the frame starts none and is counted in HEALTH.
+// Under load (both cores busy) the stage skips frames, counts them, and its
 // replay over the run's log agrees bit for bit.
 #include <gtest/gtest.h>
 
@@ -165,6 +166,39 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   EXPECT_EQ(got.face_box[2], static_cast<float>(want_face.width));
   EXPECT_EQ(got.face_box[3], static_cast<float>(want_face.height));
   EXPECT_TRUE(cv::Rect2d(got.face_box[0], got.face_box[1], got.face_box[2], got.face_box[3]).contains({298, 81}));
+}
+
+// A face whose body box lies below the frame starts no track: the stage keeps searching and HEALTH counts
+// the refused faces by reason, as many as the core refuses over the same frames.
+TEST(TrackerService, RefusedFacesAreCountedInHealth) {
+  // GIVEN the top 120 rows of the astronaut photograph (360 px) at the bottom of a grey 640x360 frame
+  const cv::Mat a = cv::imread(std::string(GPILOT_SOURCE_DIR) + "/data/people/astronaut.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(a.empty());
+  cv::Mat shrunk;
+  cv::resize(a, shrunk, cv::Size(360, 360), 0, 0, cv::INTER_AREA);
+  cv::Mat frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
+  shrunk(cv::Rect(0, 0, 360, 120)).copyTo(frame(cv::Rect(140, 240, 360, 120)));
+  TrackerUnderTest stage("test-tracker-refusals");
+  ASSERT_GT(stage.service.pid(), 0) << "cannot start gpilot-tracker";
+  std::map<int64_t, user_track_t> tracks;
+  stage.bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
+  ASSERT_TRUE(stage.wait_for_health()) << "no HEALTH from gpilot-tracker";
+  // WHEN two whole scans' worth of frames come, one at a time (raw BGR: the core below sees the same pixels)
+  UserTracker core{TrackerParams{}};
+  const int frames = 2 * FaceDetector(TrackerParams{}).scan_tiles(frame.size());
+  for (int64_t seq = 0; seq < frames; ++seq) {
+    stage.bus.publish("CAMERA", mat_to_image(frame, wall_utime(), seq));
+    ASSERT_TRUE(stage.spin_until([&] { return tracks.count(seq) > 0; }, 5000)) << "no USER_TRACK for seq " << seq;
+    EXPECT_EQ(tracks[seq].status, user_track_t::STATUS_SEARCHING) << "seq " << seq;
+    core.process(frame);
+  }
+  // THEN HEALTH says why no track started, with the core's count
+  const int64_t refused = core.refusals(FaceRefusal::kOffFrame);
+  ASSERT_GE(refused, 2);
+  const std::string want = "faces refused: " + std::to_string(refused) + " " + refusal_text(FaceRefusal::kOffFrame);
+  EXPECT_TRUE(stage.spin_until([&] { return stage.last_health.state_detail.find(want) != std::string::npos; }, 3000))
+      << "HEALTH state_detail: '" << stage.last_health.state_detail << "', want '" << want << "'";
+  EXPECT_EQ(stage.last_health.state, health_t::STATE_DEGRADED);
 }
 
 // Under load the live stage and its replay agree bit for bit. Both cores are kept busy beside gpilot-tracker
