@@ -41,6 +41,7 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   const auto row = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
   g.face_rows_end = row(y + p.face_remove_ratio * h);
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
+  g.image = image;
   const double half = g.hand_side / 2.0;
   g.body_centre_in_view = g.body_centre.x - half >= 0 && g.body_centre.y - half >= 0 && g.body_centre.x + half <= image.width &&
                           g.body_centre.y + half <= image.height;
@@ -228,7 +229,12 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
   const double shoulder_dx = params_.shoulder_half_ratio * g.width;
   const double reach = params_.reach_ratio * g.width, reach2 = reach * reach;
   const double tan_min = std::tan(params_.out_min_angle_deg * M_PI / 180.0);
+  // With the body centre out of the image (hips below the frame), a hand below the shoulder line whose square
+  // the image border cuts is not judged: a resting hand or scenery at the cut edge, whose end is out of view.
+  const bool cut_body = params_.needs_body_centre && !g.body_centre_in_view;
+  const int img_w = g.image.width, img_h = g.image.height;
   auto out_candidate = [&](int ix, int iy) {
+    if (cut_body && iy > ucy && (ix - half < 0 || ix - half + side > img_w || iy - half + side > img_h)) return false;
     const double sx = ix < ucx ? ucx - shoulder_dx : ucx + shoulder_dx;
     const double dx = std::abs(ix - sx), dy = iy - ucy;
     if (params_.reach_ratio > 0 && dx * dx + dy * dy > reach2) return false;
@@ -276,7 +282,7 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
     set(HandKind::Out, p_out, f_out, g.shoulder_centre);
   } else if (res.skin_inside > 0 && std::abs(bcx - p_front.x) < params_.front_gate_ratio * g.width &&
              f_front > params_.front_min_skin) {
-    if (params_.front_needs_body_centre && !g.body_centre_in_view) res.front_out_of_view = true;
+    if (params_.needs_body_centre && !g.body_centre_in_view) res.front_out_of_view = true;
     else set(HandKind::Front, p_front, f_front, g.body_centre);
   }
   return res;

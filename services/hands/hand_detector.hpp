@@ -10,8 +10,9 @@
 // user box are dropped (walls, wood); Alg. 1 counts only skin within reach of a shoulder and, below the shoulder line, far enough
 // from straight down that a hanging forearm is not a stretched-out arm; and an OUT hand must hang on an arm:
 // arm-coloured pixels (skin, the user's clothing) join it to the torso (not a sign, a dome, someone's face);
-// and Alg. 2 judges a hand only while the body centre is in the image (higher/lower than a centre out of view
-// is unknown: a resting hand at the frame's bottom edge is above a centre below the frame).
+// and while the body centre is out of the image, Alg. 2 judges no hand (higher/lower than a centre out of view
+// is unknown: a resting hand at the frame's bottom edge is above a centre below the frame) and Alg. 1 no hand
+// below the shoulders that the image border cuts.
 // Pure: no LCM, no clock. Image axes: x right, y down, pixels.
 #pragma once
 
@@ -39,6 +40,7 @@ struct HandGeometry {
   int open_radius = 0;          //!< skin mask opening radius, pixels (0 = none)
   int face_rows_end = 0;        //!< box rows y < this are removed (face, neck)
   int legs_rows_begin = 0;      //!< box rows y >= this are removed (legs, feet)
+  cv::Size image;               //!< the frame's size
   bool body_centre_in_view = false;  //!< p_bc and the hand square around it lie inside the image
   bool valid = false;           //!< false for a box too small or off the image
 };

@@ -112,9 +112,10 @@ struct HandsParams {
                                      //!< are the clothing's, and an arm must reach it (the box's margins are scenery)
   double front_max_upright = 2.5;    //!< Alg. 2: a skin component this many times taller than wide that reaches
                                      //!< below the body centre is a hanging forearm, not a hand in front (0 = off)
-  bool front_needs_body_centre = true;  //!< Alg. 2: a hand in front is judged only while p_bc (and the hand square
-                                        //!< around it) is in the image: with the body centre below the frame (the
-                                        //!< drone high and close), a resting hand at the bottom edge is "higher"
+  bool needs_body_centre = true;  //!< while p_bc (and the hand square around it) is out of the image (the drone high
+                                  //!< and close, the hips below the frame): Alg. 2 judges no hand in front (a resting
+                                  //!< hand at the bottom edge is "higher"), and Alg. 1 no hand below the shoulders
+                                  //!< whose square the image border cuts (a resting hand, or scenery, at the cut edge)
   // The face the tracker found is the surest reference on real people (a person box may hold stretched-out
   // arms or end at the image edge): when one is given, the box the stage works on is made from it with the
   // tracker's head-body ratios (tracker.body_*_in_faces).
@@ -146,7 +147,7 @@ struct HandsParams {
     v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
     v("torso_inset_ratio", torso_inset_ratio, 0.0, 0.45, "torso = box less this many box widths each side (arm_connected; ours)");
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
-    v("front_needs_body_centre", front_needs_body_centre, "Alg. 2: no FRONT hand while the body centre is out of the image (ours)");
+    v("needs_body_centre", needs_body_centre, "body centre out of the image: no FRONT hand, no OUT hand below the shoulders cut by the border (ours)");
     v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }
   void check(const ParamCheck& c) const {

@@ -361,8 +361,8 @@ INSTANTIATE_TEST_SUITE_P(
         Scenario{"idle", 35, {G::GESTURE_REST}},
         // Open finding (issues 10, 14): after UP the drone is high and close and the user's hips are below the frame.
         // The CLOSER flown for ~1 s at 40-42 s (a resting hand at the bottom edge, "higher" than a body centre
-        // below the frame) is gone (hands.front_needs_body_centre). Left: the yellow wall beside the box at the
-        // bottom edge read as an OUT hand (DOWN for ~1.5 s at 52-54 s in some closed-loop runs).
+        // below the frame) is gone, and half the DOWN at 52-54 s on a yellow wall at the bottom edge
+        // (hands.needs_body_centre). Left: that wall just above the border, read as an OUT hand (DOWN, 53.6 s).
         Scenario{"nuisances", 70, {G::GESTURE_REST, G::GESTURE_OUT}, 2, 0.20},
         Scenario{"dark-skin", 70, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}}),
     [](const auto& info) {

@@ -162,7 +162,7 @@ TEST_F(RulesTest, AHandInFrontIsNotJudgedWhileTheBodyCentreIsOutOfTheImage) {
   EXPECT_EQ(r.kind, HandKind::None);
   EXPECT_TRUE(r.front_out_of_view);
   // AND with the rule off THEN the paper's Alg. 2 reads it as higher (CLOSER)
-  params.front_needs_body_centre = false;
+  params.needs_body_centre = false;
   HandDetector paper(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
   r = paper.detect_on_mask(cut_mask, {0, 0}, hand_geometry(params, kBox, cut));
   EXPECT_EQ(r.kind, HandKind::Front);
@@ -192,4 +192,32 @@ TEST_F(RulesTest, AnArmMustReachTheTorsoNotTheBoxMarginBesideIt) {
   r = on_frame(frame);
   EXPECT_EQ(r.kind, HandKind::Out);
   EXPECT_GT(r.vector.x, 0);
+}
+
+TEST_F(RulesTest, AHandCutByTheBorderBelowTheShouldersIsNotJudgedWhileTheBodyIsCut) {
+  // GIVEN the frame ending at row 185 (p_bc.y 180 + 10 is out of it) and skin right of the box at x 190..204,
+  // y 176..184, touching the bottom border: below the right shoulder (168, 132), 22..36 px out and 44..52 px
+  // down (most of it over 25 deg from straight down, within reach): the 20 px hand square at any of its pixels
+  // reaches row 186 or lower, past the border
+  const cv::Size cut(400, 185);
+  cv::Mat m = cv::Mat::zeros(cut, CV_8UC1);
+  m(cv::Rect(190, 176, 15, 9)).setTo(1);
+  SkinHistogram h(2);
+  h.add(0, 0, 0, true);
+  h.add(255, 255, 255, false);
+  auto run = [&]() {
+    HandDetector d(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
+    return d.detect_on_mask(m, {0, 0}, hand_geometry(params, kBox, cut));
+  };
+  EXPECT_EQ(run().kind, HandKind::None);
+  // WHEN the whole frame is seen (400 rows: the body centre in view) THEN the same skin is an OUT hand
+  const cv::Mat cut_mask = m;
+  m = cv::Mat::zeros(kImage, CV_8UC1);
+  cut_mask.copyTo(m(cv::Rect(0, 0, cut.width, cut.height)));
+  HandDetector whole(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
+  EXPECT_EQ(whole.detect_on_mask(m, {0, 0}, hand_geometry(params, kBox, kImage)).kind, HandKind::Out);
+  // AND with the rule off THEN the paper's Alg. 1 takes the cut one too
+  m = cut_mask;
+  params.needs_body_centre = false;
+  EXPECT_EQ(run().kind, HandKind::Out);
 }
