@@ -121,9 +121,13 @@ void HandDetector::erase_component(const HandGeometry& g, cv::Point pixel) {
 }
 
 cv::Rect HandDetector::torso_rect(const HandGeometry& g) const {
+  // Inside the (clipped) box; empty when the body centre lies above the face rows or the box's top (a box
+  // mostly above the frame): cv::Rect(Point, Point) would swap the corners and reach rows above the image.
   const int inset = static_cast<int>(std::lround(params_.torso_inset_ratio * g.box.width));
-  return cv::Rect(cv::Point(g.box.x + inset, std::max(g.box.y, g.face_rows_end)),
-                  cv::Point(g.box.br().x - inset, std::min(g.box.br().y, static_cast<int>(g.body_centre.y))));
+  const int x0 = g.box.x + inset, x1 = g.box.br().x - inset;
+  const int y0 = std::max(g.box.y, g.face_rows_end), y1 = std::min(g.box.br().y, static_cast<int>(g.body_centre.y));
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
 }
 
 void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g) {
@@ -282,7 +286,7 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
     set(HandKind::Out, p_out, f_out, g.shoulder_centre);
   } else if (res.skin_inside > 0 && std::abs(bcx - p_front.x) < params_.front_gate_ratio * g.width &&
              f_front > params_.front_min_skin) {
-    if (params_.needs_body_centre && !g.body_centre_in_view) res.front_out_of_view = true;
+    if (cut_body) res.front_out_of_view = true;
     else set(HandKind::Front, p_front, f_front, g.body_centre);
   }
   return res;

@@ -221,3 +221,20 @@ TEST_F(RulesTest, AHandCutByTheBorderBelowTheShouldersIsNotJudgedWhileTheBodyIsC
   params.needs_body_centre = false;
   EXPECT_EQ(run().kind, HandKind::Out);
 }
+
+TEST_F(RulesTest, ABoxMostlyAboveTheFrameHasNoTorsoAndNoArm) {
+  // GIVEN the box (100, -100, 80, 160): p_uc y -68, p_bc y -20, only rows 0..59 in the frame, so the torso
+  // (face rows end -68 .. body centre -20) is wholly above the image; and skin right of the box at x 220..234,
+  // y 20..34: from the right shoulder (168, -68) 52..66 px out, 88..102 px down (27..37 deg), within reach
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(220, 20, 15, 15), kSkin, cv::FILLED);
+  HandDetector d(params, SkinClassifier(SkinModel::load(resolve_project_path(params.skin.model)), params.skin.threshold));
+  const HandResult r = d.detect(frame, cv::Rect2f(100, -100, 80, 160));
+  // THEN no arm can reach a torso out of view: the candidate is dropped, nothing is read above row 0
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_GE(r.armless_dropped, 1);
+  // AND the same skin with the box in the frame is an OUT hand (the candidate itself is fine), when an arm joins it
+  params.arm_connected = false;
+  HandDetector plain(params, SkinClassifier(SkinModel::load(resolve_project_path(params.skin.model)), params.skin.threshold));
+  EXPECT_EQ(plain.detect(frame, cv::Rect2f(100, -100, 80, 160)).kind, HandKind::Out);
+}
