@@ -4,7 +4,8 @@
 
 #include <string>
 
-#include "config.hpp"
+#include "config_schema.hpp"
+#include "image_codec_params.hpp"
 #include "synthetic_params.hpp"
 
 namespace gpilot {
@@ -30,5 +31,24 @@ struct CaptureParams {
   }
   void check(const ParamCheck& c) const { c.choice("pixel_format", pixel_format, {"BGR8", "GRAY8", "JPEG"}); }
 };
+
+// Capture's section of the config file, and its rule on the image section: every frame consumer refuses a
+// frame larger than image.max_*, so frames capture makes larger would feed nobody.
+inline void add_capture_sections(ConfigSchema& schema) {
+  schema.section<CaptureParams>("capture").rule([](const Config& config) {
+    const auto image = config.section<ImageLimits>("image");
+    const auto capture = config.section<CaptureParams>("capture");
+    const ParamCheck c("image");
+    const auto fits = [&](const char* key, int limit, const char* source, int size) {
+      c.require(size <= limit, key,
+                std::to_string(limit) + " is below " + source + " " + std::to_string(size) +
+                    " (every stage would refuse its frames)");
+    };
+    fits("max_width", image.max_width, "capture.width", capture.width);
+    fits("max_height", image.max_height, "capture.height", capture.height);
+    fits("max_width", image.max_width, "capture.synthetic.width", capture.synthetic.width);
+    fits("max_height", image.max_height, "capture.synthetic.height", capture.synthetic.height);
+  });
+}
 
 }  // namespace gpilot

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "config.hpp"
+#include "config_schema.hpp"
 
 namespace gpilot {
 
@@ -54,5 +54,8 @@ struct DecideParams {
               std::to_string(evidence_leave) + " must be below evidence_enter " + std::to_string(evidence_enter));
   }
 };
+
+// Decide's section of the config file (services/system assembles the whole file from every stage's).
+inline void add_decide_sections(ConfigSchema& schema) { schema.section<DecideParams>("decide"); }
 
 }  // namespace gpilot

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "config.hpp"
+#include "config_schema.hpp"
 #include "mavlink/endpoint.hpp"
 
 namespace gpilot {
@@ -151,5 +151,11 @@ struct MavlinkParams {
     }
   }
 };
+
+// Flight's sections of the config file: the bridge, the built-in simulator and the MAVLink backend
+// (services/system assembles the whole file from every stage's).
+inline void add_flight_sections(ConfigSchema& schema) {
+  schema.section<FlightParams>("flight").section<SimParams>("sim").section<MavlinkParams>("mavlink");
+}
 
 }  // namespace gpilot

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "config.hpp"
+#include "config_schema.hpp"
 
 namespace gpilot {
 
@@ -158,5 +158,8 @@ struct HandsParams {
                   " removes the whole user box (must be below 1)");
   }
 };
+
+// Hands' section of the config file (services/system assembles the whole file from every stage's).
+inline void add_hands_sections(ConfigSchema& schema) { schema.section<HandsParams>("hands"); }
 
 }  // namespace gpilot

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "body_proportions.hpp"
+#include "config_schema.hpp"
 
 namespace gpilot {
 
@@ -227,5 +228,8 @@ struct TrackerParams {
     v("face_miss_psr", face_miss_psr, 0.0, 1000.0, "a re-check miss counts only when the frame's PSR is below this");
   }
 };
+
+// The tracker's section of the config file (services/system assembles the whole file from every stage's).
+inline void add_tracker_sections(ConfigSchema& schema) { schema.section<TrackerParams>("tracker"); }
 
 }  // namespace gpilot

@@ -180,6 +180,34 @@ TEST(Config, CrossFieldRulesAreChecked) {
             "decide.out_threshold: 30 must be below buffer_size 5");
 }
 
+// The whole file is assembled from the stages' own declarations (add_<stage>_sections), in the shipped order.
+TEST(ConfigSchema, TheWholeFileListsEveryStagesSectionsInTheShippedOrder) {
+  EXPECT_EQ(config_schema().section_names(),
+            (std::vector<std::string>{"bus", "capture", "tracker", "hands", "decide", "flight", "sim", "mavlink", "image"}));
+}
+
+TEST(ConfigSchema, ASectionDeclaredTwiceIsAProgrammingError) {
+  ConfigSchema s;
+  add_hands_sections(s);
+  EXPECT_THROW(add_hands_sections(s), std::logic_error);
+}
+
+TEST(ConfigSchema, APartialSchemaKnowsOnlyItsSectionsAndRules) {
+  // GIVEN a schema with decide alone and one rule between sections
+  ConfigSchema s;
+  add_decide_sections(s);
+  int rule_runs = 0;
+  s.rule([&](const Config&) { ++rule_runs; });
+  // THEN its defaults are decide's section only, and a file with another section is refused naming it
+  EXPECT_EQ(s.defaults_yaml().find("\nhands:"), std::string::npos);
+  EXPECT_NE(s.defaults_yaml().find("\ndecide:\n  rule: \"evidence\""), std::string::npos);
+  EXPECT_EQ(error_of([&] { s.validate(Config::from_string("hands: {lambda1: 0.5}")); }),
+            "<string>: unknown section 'hands' (see deploy/config/default.yaml)");
+  EXPECT_EQ(rule_runs, 0);  // rules run after every section was read and known
+  s.validate(Config::from_string("decide: {buffer_size: 50}"));
+  EXPECT_EQ(rule_runs, 1);
+}
+
 TEST(Config, MissingFileIsAnError) {
   EXPECT_EQ(error_of([] { Config::from_file("/nonexistent/gpilot.yaml"); }),
             "/nonexistent/gpilot.yaml: cannot open config file");
