@@ -153,6 +153,11 @@ void BusNode::every(double period_s, std::function<void()> fn) {
   timers_.push_back(Timer{period, monotonic_utime() + period, std::move(fn)});
 }
 
+void BusNode::run_timers_at(int64_t utime) {
+  set_log_time(utime);
+  for (auto& t : timers_) t.fn();
+}
+
 void BusNode::set_state(int8_t health_state, const std::string& detail) { stats_.set_state(health_state, detail); }
 
 void BusNode::publish_health() {
@@ -161,6 +166,7 @@ void BusNode::publish_health() {
 }
 
 void BusNode::run_due_timers() {
+  if (log_time_ >= 0) return;  // replay: fired by run_timers_at at the live instants
   const int64_t now = monotonic_utime();
   for (auto& t : timers_) {
     if (now < t.next_us) continue;

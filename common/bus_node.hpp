@@ -121,8 +121,13 @@ class BusNode {
   // Dispatches every message already queued (memq:// replay); returns how many were handled.
   int drain();
 
-  // Runs fn every period_s seconds from the loop, on the monotonic clock.
+  // Runs fn every period_s seconds from the loop, on the monotonic clock. In replay (the node on the log's
+  // clock, set_log_time) timers never fire by themselves: the replay fires them with run_timers_at at the
+  // instants the live process's did (a timer's output is stamped with now(), so the log says when).
   void every(double period_s, std::function<void()> fn);
+  // Replay: the live process's timers fired at utime. Sets the clock to utime and runs every timer once (a
+  // replayed stage has one: gpilot-flight's setpoint tick, its other timers belong to backends not replayed).
+  void run_timers_at(int64_t utime);
 
   // A stage found an input unusable (bad image, unmatched frame): counted and reported in HEALTH.
   void reject(const std::string& reason) { stats_.rejected(reason); }

@@ -91,14 +91,8 @@ Setpoint FlightBridge::update(const BridgeInputs& in) {
   sp.utime = in.now;
   sp.engaged = in.engaged;
   sp.mode = static_cast<int8_t>(GestureMode::Hover);
-  if (in.command) {
-    sp.seq = sp.latest_command_seq = in.command->seq;
-    sp.command_received = in.command_received;
-  }
-  if (in.track) {
-    sp.track_utime = in.track->utime;
-    sp.track_received = in.track_received;
-  }
+  if (in.command) sp.seq = sp.latest_command_seq = in.command->seq;
+  if (in.track) sp.track_utime = in.track->utime;
 
   int32_t zero = 0;
   if (in.landing) zero |= reason::kLanding;

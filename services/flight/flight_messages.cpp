@@ -84,9 +84,7 @@ flight_setpoint_t to_message(const Setpoint& s) {
   m.mode = s.mode;
   m.reasons = s.reasons;
   m.latest_command_seq = s.latest_command_seq;
-  m.command_received = s.command_received;
   m.track_utime = s.track_utime;
-  m.track_received = s.track_received;
   return m;
 }
 

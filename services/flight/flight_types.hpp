@@ -52,9 +52,7 @@ struct Setpoint {
   int8_t mode = 0;                       //!< GestureMode being flown (Hover when zeroed)
   int32_t reasons = 0;                   //!< reason::* bits
   int64_t latest_command_seq = -1;       //!< the newest command the bridge had (-1 none)
-  int64_t command_received = 0;          //!< and when it arrived
   int64_t track_utime = 0;               //!< the newest track's utime (0 none)
-  int64_t track_received = 0;            //!< and when it arrived
   bool is_zero() const { return velocity[0] == 0.0 && velocity[1] == 0.0 && velocity[2] == 0.0 && yaw_rate == 0.0; }
 };
 

@@ -2,7 +2,9 @@
 // the service runs (the stage's start_*_service on a BusNode over memq://), and writes a new log with the
 // original inputs and the new outputs. --check compares the new outputs with the recorded ones. A stage is
 // given the frames the live stage processed, not those it skipped falling behind (ReplayPacing), and the
-// config the live stage published on CONFIG (unless --config or --set say otherwise).
+// config the live stage published on CONFIG (unless --config or --set say otherwise). A timer-driven stage
+// (flight) has its timer fired at the instants the live one's fired, with the inputs it had then
+// (ReplayTicks), on the log's clock.
 // This is how a bug seen in the field is reproduced on a desk.
 #include <algorithm>
 #include <cstdio>
@@ -16,8 +18,10 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "decide/decide_service.hpp"
-#include "flight_replay.hpp"
+#include "flight/flight_service.hpp"
+#include "gpilot/flight_setpoint_t.hpp"
 #include "replay_pacing.hpp"
+#include "replay_ticks.hpp"
 #include "hands/hands_service.hpp"
 #include "config_schema.hpp"
 #include "log.hpp"
@@ -27,10 +31,44 @@
 namespace gpilot {
 namespace {
 
+// Every gpilot message starts with the 8-byte type fingerprint, then utime and seq (big-endian int64).
+int64_t int64_at(const std::vector<uint8_t>& d, size_t at) {
+  if (d.size() < at + 8) return -1;
+  int64_t v = 0;
+  for (size_t i = at; i < at + 8; ++i) v = (v << 8) | d[i];
+  return v;
+}
+int64_t utime_of(const std::vector<uint8_t>& d) { return int64_at(d, 8); }
+int64_t seq_of(const std::vector<uint8_t>& d) { return int64_at(d, 16); }
+
+// gpilot-flight over a log: the same service, its vehicle states from the log (backend none: the vehicle is
+// not simulated or flown again, the bridge's decisions are replayed), its setpoint timer fired at each recorded
+// FLIGHT_SETPOINT's utime with the command and track that setpoint names (ReplayTicks).
+std::shared_ptr<void> start_flight_replayed(const Config& config, BusNode& node) {
+  Config replayed = Config::from_string(effective_config_yaml(config), "gpilot-flight's config with backend none");
+  replayed.set("flight.backend=none");
+  return start_flight_service(replayed, node);
+}
+
+ReplayTicks flight_ticks() {
+  return ReplayTicks(
+      "FLIGHT_SETPOINT",
+      [](const std::vector<uint8_t>& d, int64_t* utime, std::map<std::string, int64_t>* keys) {
+        flight_setpoint_t m{};
+        if (!decode_exactly(d.data(), d.size(), m).empty()) return false;
+        *utime = m.utime;
+        (*keys)["GESTURE_CMD"] = m.latest_command_seq;
+        (*keys)["USER_TRACK"] = m.track_utime;
+        return true;
+      },
+      {{"GESTURE_CMD", seq_of}, {"USER_TRACK", utime_of}}, {{"GESTURE_CMD", -1}, {"USER_TRACK", 0}});
+}
+
 struct StageEntry {
   std::function<std::shared_ptr<void>(const Config&, BusNode&)> start;
   std::vector<std::string> inputs, outputs;
   std::vector<std::pair<std::string, std::string>> paced = {};  //!< (input, output): see ReplayPacing
+  std::function<ReplayTicks()> ticks = nullptr;                  //!< a timer-driven stage: see ReplayTicks
 };
 
 const std::map<std::string, StageEntry>& stages() {
@@ -38,24 +76,10 @@ const std::map<std::string, StageEntry>& stages() {
       {"tracker", {start_tracker_service, {"CAMERA", "TRACKER_INIT"}, {"USER_TRACK"}, {{"CAMERA", "USER_TRACK"}}}},
       {"hands", {start_hands_service, {"CAMERA", "USER_TRACK"}, {"HAND_OBS"}, {{"CAMERA", "HAND_OBS"}}}},
       {"decide", {start_decide_service, {"HAND_OBS"}, {"GESTURE_CMD"}}},
-      // Started apart (it needs the log's clock): see FlightReplay.
-      {"flight", {nullptr, {"GESTURE_CMD", "USER_TRACK", "VEHICLE_STATE", "FLIGHT_CONTROL"}, {"FLIGHT_SETPOINT"}}},
+      {"flight", {start_flight_replayed, {"GESTURE_CMD", "USER_TRACK", "VEHICLE_STATE", "FLIGHT_CONTROL"},
+                  {"FLIGHT_SETPOINT"}, {}, flight_ticks}},
   };
   return table;
-}
-
-struct Event {
-  int64_t timestamp;
-  std::string channel;
-  std::vector<uint8_t> data;
-};
-
-// Every gpilot message starts with the 8-byte type fingerprint, then utime and seq (big-endian int64).
-int64_t seq_of(const std::vector<uint8_t>& d) {
-  if (d.size() < 24) return -1;
-  int64_t v = 0;
-  for (int i = 16; i < 24; ++i) v = (v << 8) | d[i];
-  return v;
 }
 
 }  // namespace
@@ -68,8 +92,8 @@ int main(int argc, char** argv) {
                  "the new outputs; with --check, print where the new outputs differ from the recorded ones.\n"
                  "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
                  "decide (HAND_OBS -> GESTURE_CMD), flight (GESTURE_CMD, USER_TRACK, VEHICLE_STATE, FLIGHT_CONTROL ->\n"
-                 "FLIGHT_SETPOINT: the bridge's decisions at each recorded setpoint's time; the vehicle's states come\n"
-                 "from the log), or a chain such as tracker,hands,decide.");
+                 "FLIGHT_SETPOINT: gpilot-flight's service with its timer fired at each recorded setpoint's time; the\n"
+                 "vehicle's states come from the log; alone, not in a chain), or a chain such as tracker,hands,decide.");
   std::string in_path, out_path, stage_arg;
   bool check = false, inputs_only = false, all_frames = false;
   double from_s = 0, to_s = 0;
@@ -90,6 +114,10 @@ int main(int argc, char** argv) {
       if (!stages().count(s)) throw std::invalid_argument("unknown stage '" + s + "' (tracker, hands, decide, flight)");
       chain.push_back(s);
     }
+    // A timer-driven stage is given its inputs in the order the live one had them, which only the log knows.
+    for (const auto& s : chain)
+      if (stages().at(s).ticks && chain.size() > 1)
+        throw std::invalid_argument("stage '" + s + "' replays alone (its inputs come from the log, in the order it had them)");
     std::set<std::string> outputs, inputs;
     for (const auto& s : chain)
       for (const auto& o : stages().at(s).outputs) outputs.insert(o);
@@ -155,11 +183,11 @@ int main(int argc, char** argv) {
     BusNode node("gpilot-replay", "memq://");
     int64_t now_ts = 0;
     std::vector<std::shared_ptr<void>> running;
-    std::unique_ptr<FlightReplay> flight;
+    std::unique_ptr<ReplayTicks> ticks;
     bool configs_written = false;
     for (const auto& s : chain) {
-      if (s == "flight") flight = std::make_unique<FlightReplay>(stage_config.at(s), node, now_ts);
-      else running.push_back(stages().at(s).start(stage_config.at(s), node));
+      running.push_back(stages().at(s).start(stage_config.at(s), node));
+      if (stages().at(s).ticks) ticks = std::make_unique<ReplayTicks>(stages().at(s).ticks());
     }
     // The new log carries the config each replayed stage ran with, as a live run's does.
     auto write_configs = [&](int64_t ts) {
@@ -207,9 +235,17 @@ int main(int argc, char** argv) {
       }
       if (outputs.count(ev->channel)) {
         recorded[ev->channel].push_back(message_of(p, static_cast<size_t>(ev->datalen)));
-        if (flight && ev->channel == "FLIGHT_SETPOINT") {
-          flight->on_recorded_setpoint(ev->data, static_cast<size_t>(ev->datalen));
+        if (ticks && ev->channel == ticks->output()) {
+          // The live stage's timer fired here: first the inputs it had, then the tick at its own instant.
+          const int64_t tick_utime = ticks->tick(recorded[ev->channel].back(), [&](const std::string& ch, int64_t ts,
+                                                                                  const std::vector<uint8_t>& bytes) {
+            node.set_log_time(ts);
+            node.publish_raw(ch, bytes.data(), bytes.size());
+            node.drain();
+          });
+          if (tick_utime >= 0) node.run_timers_at(tick_utime);
           node.drain();
+          node.set_log_time(now_ts);
         }
         continue;
       }
@@ -219,6 +255,10 @@ int main(int argc, char** argv) {
       if (!input) continue;
       if (!pacing.give(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))))) continue;
       ++n_inputs;
+      if (ticks && ticks->keyed(ev->channel)) {
+        ticks->hold(ev->channel, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
+        continue;
+      }
       node.publish_raw(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       node.drain();
       if (n_inputs % 200 == 0) std::fprintf(stderr, "\rgpilot-replay: %lld input messages", static_cast<long long>(n_inputs));
@@ -226,6 +266,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "\rgpilot-replay: %lld events, %lld inputs to %s, rejected %lld, %lld frames the live stage skipped\n",
                  static_cast<long long>(n_events), static_cast<long long>(n_inputs), stage_arg.c_str(),
                  static_cast<long long>(node.stats().rejected_count()), static_cast<long long>(pacing.held_back()));
+    if (ticks && ticks->not_logged() > 0)
+      log_warn("%lld of the live stage's ticks had an input the log lacks (the logger lost it): they may differ",
+               static_cast<long long>(ticks->not_logged()));
     int differences = 0;
     for (const auto& o : outputs) {
       const auto& a = produced[o];

@@ -10,7 +10,6 @@
 #include "mavlink/hex.hpp"
 #include "mavlink/messages.hpp"
 #include "mavlink/session.hpp"
-#include "mavlink/udp_link.hpp"
 
 namespace gpilot::mavlink {
 namespace {
