@@ -2,8 +2,13 @@
 # out, no bus and no clock inside (DEVELOPERS.md). So a core library
 #   - does not link gpilot_common (the bus node, the service CLI), directly or through another library;
 #   - has no source or header that includes the bus (bus_node.hpp, service_cli.hpp, <lcm/lcm-cpp.hpp>,
-#     <lcm/lcm.h>). Message types (gpilot_lcmtypes, header-only structs) are allowed.
-# A core that breaks either rule fails `cmake` with the library and the file named.
+#     <lcm/lcm.h>). Message types (gpilot_lcmtypes, header-only structs) are allowed;
+#   - has no source or header that opens a socket (<sys/socket.h>, <netinet/...>, <arpa/inet.h>, <netdb.h>,
+#     <sys/un.h>): the I/O is the adapter's (gpilot-flight's MAVLink UDP socket is in its service library);
+#   - has no source or header that reads a clock (wall_utime(), monotonic_utime(), Pacer, std::chrono's
+#     system/steady/high_resolution clocks, clock_gettime, gettimeofday): time comes in as an argument, so a
+#     replay on the log's clock gives what the live run gave. clock.hpp's unit conversions are allowed.
+# A core that breaks a rule fails `cmake` with the library and the file named.
 # And common/ knows no stage (gpilot_check_common): no file of common/ includes a header of services/ (a stage
 # declares its config sections next to its Params, services/system lists them), and the common libraries
 # do not get services/ on their include path.
@@ -13,6 +18,8 @@ set(GPILOT_COMMON_DIR ${CMAKE_SOURCE_DIR}/common)
 set(GPILOT_SERVICES_DIR ${CMAKE_SOURCE_DIR}/services)
 set(GPILOT_COMMON_LIBRARIES gpilot_config gpilot_common)
 set(GPILOT_BUS_INCLUDE_REGEX "#[ \t]*include[ \t]*[<\"](bus_node\\.hpp|service_cli\\.hpp|lcm/lcm-cpp\\.hpp|lcm/lcm\\.h)[>\"]")
+set(GPILOT_SOCKET_INCLUDE_REGEX "#[ \t]*include[ \t]*<(sys/socket\\.h|netinet/[a-z_]+\\.h|arpa/inet\\.h|netdb\\.h|sys/un\\.h)>")
+set(GPILOT_CLOCK_REGEX "(wall_utime|monotonic_utime|clock_gettime|gettimeofday)[ \t]*\\(|(system|steady|high_resolution)_clock|Pacer")
 
 # Every library `target` links, directly or not (names as written; generator expressions skipped).
 function(gpilot_link_closure target out)
@@ -69,6 +76,18 @@ function(gpilot_check_layers)
           if(_bus_includes)
             list(GET _bus_includes 0 _first)
             message(FATAL_ERROR "${_file} (library ${_core}) includes the bus: ${_first}; a stage's core has no LCM")
+          endif()
+          file(STRINGS ${_file} _socket_includes REGEX "${GPILOT_SOCKET_INCLUDE_REGEX}")
+          if(_socket_includes)
+            list(GET _socket_includes 0 _first)
+            message(FATAL_ERROR "${_file} (library ${_core}) opens a socket: ${_first}; a stage's core has no I/O "
+                                "(the socket belongs in the stage's service library)")
+          endif()
+          file(STRINGS ${_file} _clock_reads REGEX "${GPILOT_CLOCK_REGEX}")
+          if(_clock_reads)
+            list(GET _clock_reads 0 _first)
+            message(FATAL_ERROR "${_file} (library ${_core}) reads a clock: ${_first}; a stage's core takes the time "
+                                "as an argument (the adapter reads BusNode::now)")
           endif()
         endif()
       endforeach()
