@@ -8,6 +8,7 @@
 #include "config_schema.hpp"
 #include "gpilot_version.hpp"  // generated at build time (cmake/version.cmake)
 #include "log.hpp"
+#include "process_channels.hpp"
 
 namespace gpilot {
 
@@ -79,7 +80,7 @@ int ServiceCli::run_node(int argc, char** argv, const std::function<int(const Co
     c.process = name_;
     c.pid = static_cast<int32_t>(getpid());
     c.yaml = effective_config_yaml(config);
-    node.publish_report("CONFIG", c);
+    node.publish_report(process_channels::kConfig.name, c);
     return body(config, node);
   });
 }

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "capture_channels.hpp"
 #include "capture_params.hpp"
 #include "clock.hpp"
 #include "frame_sources.hpp"
@@ -65,7 +66,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
   if (format < 0) throw ConfigError("capture.pixel_format: '" + p.pixel_format + "' is not BGR8, GRAY8 or JPEG");
 
   std::optional<CameraPose> vehicle;  // the latest VEHICLE_STATE: the synthetic camera flies with it
-  node.subscribe<vehicle_state_t>("VEHICLE_STATE", [&vehicle](const vehicle_state_t& m, int64_t) {
+  subscribe(node, capture_channels::kVehicleState, [&vehicle](const vehicle_state_t& m, int64_t) {
     vehicle = CameraPose{m.position[0], m.position[1], m.position[2], m.attitude[2]};
   });
   node.every(1.0, [&node] { node.publish_health(); });
@@ -173,8 +174,8 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
         f.utime = std::max(f.utime, last_utime + 1);  // each frame its own time, even read within a microsecond
         last_utime = f.utime;
         const image_t img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality);
-        node.publish("CAMERA", img);
-        if (f.truth) node.publish("GROUND_TRUTH", to_message(*f.truth, f.utime, seq));
+        publish(node, capture_channels::kCamera, img);
+        if (f.truth) publish(node, capture_channels::kGroundTruth, to_message(*f.truth, f.utime, seq));
         ++seq;
         if (degraded) {
           degraded = false;

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "bus_node.hpp"
+#include "decide_channels.hpp"
 #include "gesture_decider.hpp"
 #include "decide_service.hpp"
 
@@ -58,10 +59,10 @@ gesture_cmd_t to_message(const GestureCommand& c) {
 
 std::shared_ptr<void> start_decide_service(const Config& config, BusNode& node) {
   auto decider = std::make_shared<GestureDecider>(config.section<DecideParams>("decide"));
-  node.subscribe<hand_obs_t>("HAND_OBS", [&node, d = decider.get()](const hand_obs_t& m, int64_t) {
+  subscribe(node, decide_channels::kHandObs, [&node, d = decider.get()](const hand_obs_t& m, int64_t) {
     const gesture_cmd_t out = to_message(d->update(to_hand_observation(m)));
     if (const char* why = reset_reason(d->last_reset())) node.set_state(health_t::STATE_OK, why);
-    node.publish("GESTURE_CMD", out);
+    publish(node, decide_channels::kGestureCmd, out);
   });
   node.set_state(health_t::STATE_OK, "waiting for HAND_OBS");
   return decider;

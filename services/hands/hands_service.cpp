@@ -11,6 +11,7 @@
 #include "bus_node.hpp"
 #include "hands/hands_service.hpp"
 #include "hands/hand_observer.hpp"
+#include "hands/hands_channels.hpp"
 #include "hands/hands_params.hpp"
 #include "hands/seq_pairer.hpp"
 #include "image_codec.hpp"
@@ -111,18 +112,18 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     hand_obs_t obs;
     const std::string why = hands_on_pair(observer, frame, track, limits, obs);
     if (!why.empty()) return node.reject(why);
-    node.publish("HAND_OBS", obs);
+    publish(node, hands_channels::kHandObs, obs);
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
   };
   // A short CAMERA queue, as the tracker's (tracker.camera_queue): LCM drops the frames that arrive while it is
   // full; a skipped frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the
   // frames this stage published a HAND_OBS of.
   auto& gaps = state->gaps;
-  node.subscribe<image_t>("CAMERA", [&node, &gaps, handle, &pairer](const image_t& m, int64_t) {
+  subscribe(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer](const image_t& m, int64_t) {
     for (int64_t n = gaps.skipped_before(m.seq); n > 0; --n) node.drop();
     handle(pairer.add_frame(m.seq, m));
   }, config.section<TrackerParams>("tracker").camera_queue);
-  node.subscribe<user_track_t>("USER_TRACK", [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
+  subscribe(node, hands_channels::kUserTrack, [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
   node.set_state(health_t::STATE_DEGRADED, "waiting for CAMERA and USER_TRACK");
   return state;
 }

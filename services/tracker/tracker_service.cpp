@@ -12,6 +12,7 @@
 #include "bus_node.hpp"
 #include "image_codec.hpp"
 #include "seq_gaps.hpp"
+#include "tracker_channels.hpp"
 #include "tracker_service.hpp"
 #include "user_tracker.hpp"
 
@@ -65,7 +66,7 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
   // falls behind skips frames instead of answering later and later. Each skipped frame (a seq gap) is counted
   // in HEALTH.dropped; the frames it did process are those it published a USER_TRACK of (gpilot-replay gives a
   // replay exactly those).
-  node.subscribe<gpilot::image_t>("CAMERA", [&node, &tracker, &frame, &gaps, limits](const gpilot::image_t& msg, int64_t) {
+  subscribe(node, tracker_channels::kCamera, [&node, &tracker, &frame, &gaps, limits](const gpilot::image_t& msg, int64_t) {
     for (int64_t n = gaps.skipped_before(msg.seq); n > 0; --n) node.drop();
     const std::string why = gpilot::image_to_mat(msg, frame, limits);
     if (!why.empty()) {
@@ -79,7 +80,7 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
       node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + e.what());
       return;
     }
-    node.publish("USER_TRACK", to_message(out, msg));
+    publish(node, tracker_channels::kUserTrack, to_message(out, msg));
     std::string detail = out.status == gpilot::TrackStatus::kTracking ? "tracking"
                          : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
                                                                       : "searching for a face";
@@ -96,7 +97,7 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
                    detail);
   }, params.camera_queue);
 
-  node.subscribe<gpilot::tracker_init_t>("TRACKER_INIT", [&node, &tracker](const gpilot::tracker_init_t& msg, int64_t) {
+  subscribe(node, tracker_channels::kTrackerInit, [&node, &tracker](const gpilot::tracker_init_t& msg, int64_t) {
     if (msg.command == gpilot::tracker_init_t::COMMAND_RESET) {
       tracker.reset();
       return;

@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bus_node.hpp"
+#include "capture/capture_channels.hpp"
 #include "capture/synthetic_world.hpp"
 #include "image_codec.hpp"
 
@@ -48,7 +49,7 @@ void BM_SyntheticRenderAndPublish(benchmark::State& state) {
   int64_t i = 0;
   for (auto _ : state) {
     const SyntheticFrame f = w.render(6.5, i, CameraPose{0.2, 0.1, -1.5, 0.02});
-    node.publish("CAMERA", mat_to_image(f.bgr, i, i));
+    publish(node, capture_channels::kCamera, mat_to_image(f.bgr, i, i));
     node.drain();
     ++i;
   }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bus_node.hpp"
+#include "flight/flight_channels.hpp"
 #include "log.hpp"
 #include "service_cli.hpp"
 
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
     Pacer pace(20.0);
     for (int i = 0; i < std::max(1, repeat); ++i) {
       if (i) pace.wait();
-      node.publish("FLIGHT_CONTROL", m);
+      publish(node, flight_channels::kFlightControl, m);
     }
     std::printf("gpilot-ctl: sent %s\n", command.c_str());
     return 0;

@@ -1,18 +1,29 @@
 // gpilot-health: a terminal table of every gpilot process's HEALTH (state, rates, rejections, timing).
-// Reads HEALTH; like every process it also publishes its own.
+// Reads HEALTH; like every process it also publishes its own. --channels prints the table of every channel
+// from the stages' declarations (DEVELOPERS.md holds it; a test compares).
 #include <cstdio>
 #include <map>
 #include <string>
 
 #include "service_cli.hpp"
+#include "system/system_channels.hpp"
 
 int main(int argc, char** argv) {
   gpilot::ServiceCli cli("gpilot-health", "Show the HEALTH of every gpilot process on the bus, once a second.");
   double duration_s = 0;
   cli.app().add_option("--duration", duration_s, "stop after this many seconds (default: until Ctrl-C)");
+  bool channels = false;
+  cli.app().add_flag("--channels", channels,
+                     "print every channel (type, the processes that write and read it) as a Markdown table and exit");
+  for (int i = 1; i < argc; ++i)  // no bus for the table: it is the declarations, not what is on the bus
+    if (std::string(argv[i]) == "--channels")
+      return cli.run(argc, argv, [](const gpilot::Config&) {
+        std::fputs(gpilot::channel_table_markdown().c_str(), stdout);
+        return 0;
+      });
   return cli.run_node(argc, argv, [&](const gpilot::Config&, gpilot::BusNode& node) {
     std::map<std::string, gpilot::health_t> latest;
-    node.subscribe<gpilot::health_t>("HEALTH", [&](const gpilot::health_t& h, int64_t) { latest[h.name] = h; });
+    subscribe(node, gpilot::process_channels::kHealth, [&](const gpilot::health_t& h, int64_t) { latest[h.name] = h; });
     static const char* kStates[] = {"STARTING", "OK", "DEGRADED", "ERROR", "STOPPING"};
     node.every(1.0, [&] {
       std::printf("%-22s %-9s %8s %8s %8s %8s %7s %7s  %s\n", "process", "state", "in/s", "out/s", "rejected",

@@ -19,9 +19,11 @@
 #include <unistd.h>
 
 #include "clock.hpp"
+#include "flight/flight_channels.hpp"
 #include "log.hpp"
 #include "notify_socket.hpp"
 #include "paths.hpp"
+#include "process_channels.hpp"
 #include "service_cli.hpp"
 #include "service_set.hpp"
 #include "gpilot/user_track_t.hpp"
@@ -187,11 +189,11 @@ int main(int argc, char** argv) {
     BusNode node("gpilot-launch", url, config.section<BusParams>("bus"));
     std::map<std::string, health_t> health;
     int8_t mode = -1;
-    node.subscribe<health_t>("HEALTH", [&](const health_t& h, int64_t) { health[h.name] = h; });
-    node.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t& g, int64_t) { mode = g.mode; });
+    subscribe(node, process_channels::kHealth, [&](const health_t& h, int64_t) { health[h.name] = h; });
+    subscribe(node, flight_channels::kGestureCmd, [&](const gesture_cmd_t& g, int64_t) { mode = g.mode; });
     // Frames that made it through the tracker: one USER_TRACK each (listening to CAMERA would copy every image).
     long long frames = 0;
-    node.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t&, int64_t) { ++frames; });
+    subscribe(node, flight_channels::kUserTrack, [&](const user_track_t&, int64_t) { ++frames; });
     log_info("progress each second: frames tracked, decided mode, each stage's messages/s in>out");
 
     std::vector<Child> children;
@@ -261,7 +263,7 @@ int main(int argc, char** argv) {
       fc.seq = engage_sent++;
       fc.command = flight_control_t::COMMAND_ENGAGE;
       fc.source = "gpilot-launch";
-      node.publish("FLIGHT_CONTROL", fc);
+      publish(node, flight_channels::kFlightControl, fc);
       if (engage_sent == 1) log_info("engaged");
     });
     node.every(1.0, [&] {
