@@ -136,7 +136,19 @@ ScenarioState mix(const ScenarioState& a, const ScenarioState& b, double w) {
   return s;
 }
 
-double progress(const Keyframe& k, double t) {
+BystanderState mix(const BystanderState& a, const BystanderState& b, double w) {
+  BystanderState s = b;
+  s.north = mix(a.north, b.north, w);
+  s.east = mix(a.east, b.east, w);
+  s.right_arm = mix(a.right_arm, b.right_arm, w);
+  s.left_arm = mix(a.left_arm, b.left_arm, w);
+  s.wave_deg = mix(a.wave_deg, b.wave_deg, w);
+  s.wave_hz = mix(a.wave_hz, b.wave_hz, w);
+  return s;
+}
+
+template <class K>
+double progress(const K& k, double t) {
   return k.transition_s <= 0.0 ? (t >= k.t_s ? 1.0 : 0.0) : smoothstep((t - k.t_s) / k.transition_s);
 }
 
@@ -191,7 +203,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     throw ScenarioError(origin + ": not valid YAML: " + e.what());
   }
   r.only(root, "", {"name", "description", "duration_s", "background", "background_grade", "transition_s", "camera",
-                    "person", "distractor", "wall", "keyframes"});
+                    "person", "distractor", "wall", "bystanders", "keyframes"});
   Scenario s;
   s.origin_ = origin;
   if (root["name"]) s.name_ = r.text(root["name"], "name");
@@ -264,6 +276,54 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     r.opt(w, "shading", "wall", s.wall_.shading, 0, 0.8);
   }
 
+  if (const YAML::Node list = root["bystanders"]) {
+    if (!list.IsSequence()) r.fail("bystanders", "a list of people");
+    for (size_t i = 0; i < list.size(); ++i) {
+      const std::string ctx = "bystanders[" + std::to_string(i) + "]";
+      const YAML::Node b = list[i];
+      r.only(b, ctx, {"name", "shirt_bgr", "trousers_bgr", "sleeves", "keyframes"});
+      Bystander by;
+      by.name = b["name"] ? r.text(b["name"], ctx + ".name") : "bystander " + std::to_string(i + 1);
+      by.look.shirt_bgr = {40, 45, 140};
+      by.look.trousers_bgr = {50, 50, 50};
+      if (b["shirt_bgr"]) by.look.shirt_bgr = r.colour(b["shirt_bgr"], ctx + ".shirt_bgr");
+      if (b["trousers_bgr"]) by.look.trousers_bgr = r.colour(b["trousers_bgr"], ctx + ".trousers_bgr");
+      if (b["sleeves"]) {
+        const std::string v = r.text(b["sleeves"], ctx + ".sleeves");
+        if (v != "short" && v != "long") r.fail(ctx + ".sleeves", "short or long, not '" + v + "'");
+        by.look.long_sleeves = v == "long";
+      }
+      const YAML::Node bk = b["keyframes"];
+      if (!bk || !bk.IsSequence() || bk.size() == 0) r.fail(ctx + ".keyframes", "a non-empty list is required");
+      BystanderState st;
+      st.right_arm = st.left_arm = ArmPose::preset("rest");
+      for (size_t k = 0; k < bk.size(); ++k) {
+        const std::string kc = ctx + ".keyframes[" + std::to_string(k) + "]";
+        const YAML::Node n = bk[k];
+        r.only(n, kc, {"t", "transition_s", "north", "east", "right_arm", "left_arm", "wave_deg", "wave_hz"});
+        BystanderKeyframe kf;
+        if (!n["t"]) r.fail(kc + ".t", "missing");
+        kf.t_s = r.number(n["t"], kc + ".t", 0, 1e6);
+        if (!by.keyframes.empty() && kf.t_s <= by.keyframes.back().t_s) r.fail(kc + ".t", "times must increase");
+        if (k == 0 && (!n["north"] || !n["east"])) r.fail(kc, "the first keyframe says where they stand (north, east)");
+        kf.transition_s = transition;
+        r.opt(n, "transition_s", kc, kf.transition_s, 0.0, 600.0);
+        r.opt(n, "north", kc, st.north, -1e4, 1e4);
+        r.opt(n, "east", kc, st.east, -1e4, 1e4);
+        if (n["right_arm"]) st.right_arm = read_arm(r, n["right_arm"], kc + ".right_arm", st.right_arm);
+        if (n["left_arm"]) st.left_arm = read_arm(r, n["left_arm"], kc + ".left_arm", st.left_arm);
+        r.opt(n, "wave_deg", kc, st.wave_deg, 0, 90);
+        r.opt(n, "wave_hz", kc, st.wave_hz, 0.05, 10);
+        kf.state = st;
+        by.keyframes.push_back(kf);
+      }
+      by.starts.assign(by.keyframes.size(), by.keyframes.front().state);
+      for (size_t k = 2; k < by.keyframes.size(); ++k)
+        by.starts[k] = mix(by.starts[k - 1], by.keyframes[k - 1].state, progress(by.keyframes[k - 1], by.keyframes[k].t_s));
+      s.bystanders_.push_back(std::move(by));
+    }
+  }
+
   const YAML::Node keys = root["keyframes"];
   if (!keys || !keys.IsSequence() || keys.size() == 0) r.fail("keyframes", "a non-empty list is required");
   ScenarioState state;
@@ -310,6 +370,14 @@ ScenarioState Scenario::state_at(double t_s) const {
   size_t k = 0;
   while (k + 1 < keyframes_.size() && t_s >= keyframes_[k + 1].t_s) ++k;
   return k == 0 ? keyframes_.front().state : mix(starts_[k], keyframes_[k].state, progress(keyframes_[k], t_s));
+}
+
+BystanderState Bystander::state_at(double t_s) const {
+  size_t k = 0;
+  while (k + 1 < keyframes.size() && t_s >= keyframes[k + 1].t_s) ++k;
+  BystanderState s = k == 0 ? keyframes.front().state : mix(starts[k], keyframes[k].state, progress(keyframes[k], t_s));
+  if (s.wave_deg > 0.0) s.right_arm.angle_deg += s.wave_deg * std::sin(2.0 * M_PI * s.wave_hz * t_s);
+  return s;
 }
 
 std::vector<double> Scenario::key_times() const {

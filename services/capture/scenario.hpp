@@ -25,6 +25,18 @@
 //            # height_m: 0 = unbounded (it fills the view), else a rectangle centred behind the person, from the
 //            # ground up; shading: how much darker the wall gets away from its light (a lamp up and to the
 //            # person's right, 0 = evenly lit). The texture is procedural, the same for every seed.
+//   bystanders:                        # other people in the scene (issue 13: the user, not a bystander)
+//     - name: walker                   # for messages and tools
+//       shirt_bgr: [40, 40, 150]       # also trousers_bgr, sleeves (as person's); the same face portrait and
+//                                      # skin tone as the user, always facing the camera (a passer-by
+//                                      # glancing at the drone: a frontal face, the harder case for a tracker)
+//       keyframes:                     # as the user's, with their own keys: north, east (NED metres, where
+//         - {t: 0, north: 1.6, east: -3}   # they stand; smooth moves between keyframes, so a walk is a
+//         - {t: 8, east: 3, transition_s: 5}   # keyframe with a long transition), right_arm, left_arm,
+//         - {t: 20, right_arm: up, wave_deg: 25, wave_hz: 1.5}   # wave_deg: the right arm's angle
+//                                      # swings ± this at wave_hz (a wave); 0 = still
+//     A bystander has no ground truth of their own in GROUND_TRUTH (its boxes are the user's); what they do
+//     must never reach a command: the user's expected mode is all the truth there is.
 //   keyframes:
 //     - {t: 0, gesture: REST, right_arm: rest, left_arm: rest}
 //     - {t: 4, gesture: OUT, right_arm: out, transition_s: 1.5}
@@ -124,6 +136,30 @@ struct Keyframe {
   ScenarioState state;  //!< the full state once the transition is over
 };
 
+// Another person in the scene (see the format comment above): where they stand and how their arms move.
+struct BystanderState {
+  double north = 0.0, east = 0.0;  //!< NED metres, the point between the feet
+  ArmPose right_arm, left_arm;
+  double wave_deg = 0.0;           //!< the right arm's angle swings ± this ...
+  double wave_hz = 1.5;            //!< ... at this frequency
+};
+
+struct BystanderKeyframe {
+  double t_s = 0.0;
+  double transition_s = 1.0;
+  BystanderState state;
+};
+
+struct Bystander {
+  std::string name;
+  ScenarioPerson look;  //!< shirt, trousers, sleeves (the place is in the keyframes; always faces the camera)
+  std::vector<BystanderKeyframe> keyframes;
+  std::vector<BystanderState> starts;  //!< the state each keyframe's move starts from
+
+  // The state at scenario time t_s, the wave applied (its right arm's angle at that instant).
+  BystanderState state_at(double t_s) const;
+};
+
 class Scenario {
  public:
   // A bare name ("tour") means deploy/scenarios/<name>.yaml under the project root; anything else is a path.
@@ -140,6 +176,7 @@ class Scenario {
   const ScenarioPerson& person() const { return person_; }
   const ScenarioDistractor& distractor() const { return distractor_; }
   const ScenarioWall& wall() const { return wall_; }
+  const std::vector<Bystander>& bystanders() const { return bystanders_; }
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
 
   // The state at scenario time t_s (clamped to the script).
@@ -157,6 +194,7 @@ class Scenario {
   ScenarioPerson person_;
   ScenarioDistractor distractor_;
   ScenarioWall wall_;
+  std::vector<Bystander> bystanders_;
   std::vector<Keyframe> keyframes_;
   std::vector<ScenarioState> starts_;  // the state each keyframe's move starts from
 };

@@ -439,10 +439,10 @@ void SyntheticWorld::draw_head(cv::Mat& img, cv::Mat* labels, const View& v, dou
   }
 }
 
-void SyntheticWorld::draw_person(cv::Mat& img, cv::Mat* labels, const View& v, const FigurePose& pose) const {
+void SyntheticWorld::draw_person(cv::Mat& img, cv::Mat* labels, const View& v, const FigurePose& pose,
+                                 const ScenarioPerson& person) const {
   const FigureDims& d = dims_;
   const double sx = pose.step_x;
-  const auto& person = scenario_.person();
   const cv::Scalar shirt(person.shirt_bgr[0], person.shirt_bgr[1], person.shirt_bgr[2]);
   const cv::Scalar trousers(person.trousers_bgr[0], person.trousers_bgr[1], person.trousers_bgr[2]);
   auto P = [&](double x, double y, double z = 0.0) { return cv::Point3d(sx + x, y, z); };
@@ -568,10 +568,14 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   const double py = person.faces_camera && std::hypot(cam.north - person.north, cam.east - person.east) > 1e-6
                         ? std::atan2(cam.east - person.east, cam.north - person.north)
                         : person.facing_yaw;
-  v.left = {std::sin(py), -std::cos(py), 0.0};
-  v.up = {0.0, 0.0, -1.0};
-  v.front = {std::cos(py), std::sin(py), 0.0};
-  v.origin = {person.north, person.east, 0.0};
+  // A person frame at (north, east) facing yaw: the user's, and each bystander's (who always face the camera).
+  const auto place = [](View& view, double north, double east, double yaw) {
+    view.left = {std::sin(yaw), -std::cos(yaw), 0.0};
+    view.up = {0.0, 0.0, -1.0};
+    view.front = {std::cos(yaw), std::sin(yaw), 0.0};
+    view.origin = {north, east, 0.0};
+  };
+  place(v, person.north, person.east, py);
 
   SyntheticFrame out;
   out.bgr.create(params_.height, params_.width, CV_8UC3);
@@ -600,7 +604,38 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   const FigurePose pose = pose_figure(dims_, s.right_arm, s.left_arm, s.step_m);
   // A person behind the camera (the drone turned away or flew past) is not drawn, and has no boxes.
   const bool in_front = v.depth({pose.step_x, dims_.waist_y, 0.0}) > 0.3;
-  if (in_front) draw_person(out.bgr, labels, v, pose);
+  // Everyone in front of the camera, drawn far to near: the user (index -1) and the bystanders.
+  struct Drawn {
+    double depth;
+    int index;
+    View view;
+    FigurePose pose;
+  };
+  std::vector<Drawn> people;
+  if (in_front) people.push_back({v.depth({pose.step_x, dims_.waist_y, 0.0}), -1, v, pose});
+  const auto& bystanders = scenario_.bystanders();
+  for (size_t i = 0; i < bystanders.size(); ++i) {
+    const BystanderState b = bystanders[i].state_at(t_s);
+    View bv = v;
+    const double yaw = std::hypot(cam.north - b.north, cam.east - b.east) > 1e-6
+                           ? std::atan2(cam.east - b.east, cam.north - b.north) : 0.0;
+    place(bv, b.north, b.east, yaw);
+    const FigurePose bp = pose_figure(dims_, b.right_arm, b.left_arm, 0.0);
+    const double depth = bv.depth({0.0, dims_.waist_y, 0.0});
+    if (depth > 0.3) people.push_back({depth, static_cast<int>(i), bv, bp});
+  }
+  std::stable_sort(people.begin(), people.end(), [](const Drawn& a, const Drawn& b) { return a.depth > b.depth; });
+  for (const Drawn& p : people) {
+    if (p.index < 0) {
+      draw_person(out.bgr, labels, p.view, p.pose, person);
+      continue;
+    }
+    // A bystander's parts are all labelled Bystander (drawn on a label image of their own, then copied over).
+    cv::Mat own;
+    if (labels) own = cv::Mat::zeros(out.bgr.size(), CV_8UC1);
+    draw_person(out.bgr, labels ? &own : nullptr, p.view, p.pose, bystanders[static_cast<size_t>(p.index)].look);
+    if (labels) labels->setTo(cv::Scalar(static_cast<double>(PartLabel::Bystander)), own != 0);
+  }
   apply_nuisances(out.bgr, s, frame_index);
 
   // Ground truth.

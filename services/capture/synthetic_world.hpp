@@ -33,7 +33,10 @@
 //
 // Scene. Back to front: the background photo (graded as the scenario says), the scenario's wall if any (a
 // textured plane in the world, per-pixel ray intersection, labelled Wall), the distractor (behind the wall
-// when it is further than the wall), the person, then the frame-wide nuisances.
+// when it is further than the wall), the person and the scenario's bystanders (the same figure and face, their
+// own clothes, each facing the camera; all people drawn far to near, so one who walks between the user and
+// the camera hides the user; labelled Bystander), then the frame-wide nuisances. The truth stays the user's:
+// a bystander in front of the user does not change the user's boxes.
 // - expected_kind / expected_vector / expected_mode / expected_direction: the paper's Alg. 1/2/3 applied to the
 //   true hands and the true user box (gesture_truth.hpp lists the simplifications).
 // - a person behind the camera is not drawn; the boxes, points and hand_size are then 0 and the expected
@@ -78,7 +81,8 @@ struct SyntheticFrame {
 
 // Per-pixel part labels (render(..., &labels)): for tests and the contact sheet.
 enum class PartLabel : uint8_t {
-  Background = 0, Distractor, Legs, Torso, Head, RightArmSkin, RightHand, LeftArmSkin, LeftHand, Sleeve, Wall
+  Background = 0, Distractor, Legs, Torso, Head, RightArmSkin, RightHand, LeftArmSkin, LeftHand, Sleeve, Wall,
+  Bystander  //!< any part of a scenario's bystander
 };
 
 class SyntheticWorld {
@@ -100,7 +104,7 @@ class SyntheticWorld {
   struct View;  // the camera of one frame
   void draw_background(cv::Mat& img, const View& v) const;
   void draw_wall(cv::Mat& img, cv::Mat* labels, const View& v) const;
-  void draw_person(cv::Mat& img, cv::Mat* labels, const View& v, const FigurePose& pose) const;
+  void draw_person(cv::Mat& img, cv::Mat* labels, const View& v, const FigurePose& pose, const ScenarioPerson& look) const;
   void draw_head(cv::Mat& img, cv::Mat* labels, const View& v, double step_x) const;
   void blend_skin(cv::Mat& img, const cv::Mat& alpha, const cv::Rect& roi) const;
   void apply_nuisances(cv::Mat& img, const ScenarioState& s, int64_t frame_index) const;

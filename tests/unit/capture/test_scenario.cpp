@@ -115,5 +115,52 @@ TEST(Scenario, BadFilesNameTheKey) {
   EXPECT_NE(error_of("keyframes: [{t: 0, right_arm: {hand: [1, 2]}}]").find("right_arm.hand"), std::string::npos);
 }
 
+
+// Bystanders (issue 13): GIVEN a walker who crosses from east -2 to +2 over 4 s and a waver whose right arm
+// swings ±20° about 140° at 1 Hz WHEN the script is read THEN they are where and as the keyframes say, between
+// them smoothly; their clothes and names are the file's.
+TEST(Scenario, BystandersWalkAndWaveByTheirOwnKeyframes) {
+  const Scenario s = Scenario::parse(R"(
+bystanders:
+  - name: walker
+    shirt_bgr: [10, 20, 30]
+    keyframes:
+      - {t: 0, north: 1.5, east: -2}
+      - {t: 10, east: 2, transition_s: 4}
+  - keyframes:
+      - {t: 0, north: 3, east: 1}
+      - {t: 5, right_arm: {preset: up, angle_deg: 140}, wave_deg: 20, wave_hz: 1, transition_s: 0}
+keyframes:
+  - {t: 0, gesture: REST}
+)", "test.yaml");
+  ASSERT_EQ(s.bystanders().size(), 2u);
+  const Bystander& walker = s.bystanders()[0];
+  EXPECT_EQ(walker.name, "walker");
+  EXPECT_EQ(walker.look.shirt_bgr, (std::array<int, 3>{10, 20, 30}));
+  EXPECT_EQ(s.bystanders()[1].name, "bystander 2");
+  EXPECT_DOUBLE_EQ(walker.state_at(5).east, -2.0);
+  EXPECT_DOUBLE_EQ(walker.state_at(5).north, 1.5);
+  EXPECT_DOUBLE_EQ(walker.state_at(12).east, 0.0);  // half-way: smoothstep(0.5) = 0.5
+  EXPECT_DOUBLE_EQ(walker.state_at(20).east, 2.0);
+  const Bystander& waver = s.bystanders()[1];
+  EXPECT_DOUBLE_EQ(waver.state_at(4).right_arm.angle_deg, 0.0);          // at rest before
+  EXPECT_NEAR(waver.state_at(6.0).right_arm.angle_deg, 140.0, 1e-9);     // sin(2 pi 1 Hz 6 s) = 0
+  EXPECT_NEAR(waver.state_at(6.25).right_arm.angle_deg, 160.0, 1e-9);    // a quarter period: +20
+  EXPECT_NEAR(waver.state_at(6.75).right_arm.angle_deg, 120.0, 1e-9);
+}
+
+TEST(Scenario, BadBystandersNameTheKey) {
+  EXPECT_NE(error_of("bystanders: {a: 1}\nkeyframes: [{t: 0}]").find("bystanders: a list"), std::string::npos);
+  EXPECT_NE(error_of("bystanders: [{keyframes: [{t: 0, north: 1}]}]\nkeyframes: [{t: 0}]")
+                .find("bystanders[0].keyframes[0]: the first keyframe says where they stand"),
+            std::string::npos);
+  EXPECT_NE(error_of("bystanders: [{hat: red, keyframes: [{t: 0, north: 1, east: 0}]}]\nkeyframes: [{t: 0}]")
+                .find("bystanders[0].hat: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of("bystanders: [{keyframes: [{t: 0, north: 1, east: 0, wave_deg: 100}]}]\nkeyframes: [{t: 0}]")
+                .find("bystanders[0].keyframes[0].wave_deg: value 100 outside [0, 90]"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpilot

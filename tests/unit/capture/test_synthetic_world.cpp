@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/hand_obs_t.hpp"
@@ -253,6 +255,37 @@ TEST(SyntheticWorld, SkinModelSeesTheHandsAndNothingElse) {
   EXPECT_GT(hand_skin, 0.8 * hand) << hand_skin << " of " << hand;
   EXPECT_LT(cloth_skin, 0.01 * cloth) << cloth_skin << " of " << cloth;
   EXPECT_LE(outside_skin, hp.out_min_skin);
+}
+
+
+// Bystanders (issue 13): GIVEN the shipped `bystander` scenario WHEN the walker is half-way across, 1.6 m from
+// the camera, in front of the user (12 s) THEN the walker hides the user's face (its pixels are labelled
+// Bystander) while the truth is still the user's, the same as without bystanders; WHEN the waver stands
+// beside the user (40 s) THEN they are drawn to the user's right in the image, in their own shirt.
+TEST(SyntheticWorld, BystandersAreDrawnFarToNearAndTheTruthStaysTheUsers) {
+  const Scenario with = Scenario::load("bystander");
+  const SyntheticWorld world(SyntheticParams{}, with, 7);
+  // The same user at rest without the bystanders.
+  const std::string yaml = "background: " + with.background() + "\nperson: {north: 3.0, east: 0.0}\nkeyframes:\n";
+  const SyntheticWorld alone(SyntheticParams{}, Scenario::parse(yaml + "  - {t: 0, gesture: REST}\n", "alone.yaml"), 7);
+  cv::Mat labels;
+  const SyntheticFrame f = world.render(12.0, 300, std::nullopt, &labels);
+  const SyntheticFrame g = alone.render(12.0, 300, std::nullopt);
+  EXPECT_EQ(f.truth.user_box, g.truth.user_box);
+  EXPECT_EQ(f.truth.face_box, g.truth.face_box);
+  const cv::Point face_centre(cvRound(f.truth.face_box.x + f.truth.face_box.width / 2), cvRound(f.truth.face_box.y + f.truth.face_box.height / 2));
+  EXPECT_EQ(labels.at<uchar>(face_centre), static_cast<uchar>(PartLabel::Bystander));
+  EXPECT_GT(cv::countNonZero(labels == static_cast<uchar>(PartLabel::Bystander)), 20000);  // a big near person
+
+  const SyntheticFrame w = world.render(40.0, 1000, std::nullopt, &labels);
+  const cv::Mat by = labels == static_cast<uchar>(PartLabel::Bystander);
+  const cv::Rect where = cv::boundingRect(by);
+  EXPECT_GT(where.x, f.truth.user_box.x + f.truth.user_box.width);  // beside the user, to the image's right
+  EXPECT_GT(cv::countNonZero(by), 3000);
+  // Their shirt (BGR 60, 150, 200) on their torso, below their face.
+  const cv::Vec3b shirt = w.bgr.at<cv::Vec3b>(where.y + where.height / 3, where.x + where.width / 2);
+  EXPECT_NEAR(shirt[2], 200, 90);
+  EXPECT_LT(shirt[0], shirt[2]);
 }
 
 }  // namespace
