@@ -55,6 +55,25 @@ json latency_json(const LatencyStats& l) {
 
 }  // namespace
 
+double box_iou(const float a[4], const float b[4]) {
+  if (!(a[2] > 0 && a[3] > 0 && b[2] > 0 && b[3] > 0)) return 0.0;
+  const double x0 = std::max(a[0], b[0]), y0 = std::max(a[1], b[1]);
+  const double x1 = std::min(a[0] + a[2], b[0] + b[2]), y1 = std::min(a[1] + a[3], b[1] + b[3]);
+  const double inter = std::max(0.0, x1 - x0) * std::max(0.0, y1 - y0);
+  const double uni = static_cast<double>(a[2]) * a[3] + static_cast<double>(b[2]) * b[3] - inter;
+  return uni > 0 ? inter / uni : 0.0;
+}
+
+void TrackVsTruth::add(int status, double iou) {
+  ++frames;
+  if (status != user_track_t::STATUS_TRACKING) return;
+  ++tracking;
+  on_user += iou >= 0.5;
+  elsewhere += iou < 0.2;
+  iou_sum += iou;
+  iou_min = std::min(iou_min, iou);
+}
+
 RunAnalyzer::RunAnalyzer(int buffer_size) : buffer_size_(std::max(1, buffer_size)) {}
 
 int64_t Summary::logger_lost() const {
@@ -92,6 +111,7 @@ void RunAnalyzer::on_track(const user_track_t& m, int64_t) {
   ++track_frames_;
   note_seq("USER_TRACK", false, "", m.seq);
   if (m.status >= 0 && m.status < 3) ++track_by_status_[static_cast<size_t>(m.status)];
+  track_box_by_seq_[m.seq] = {m.status, {m.box[0], m.box[1], m.box[2], m.box[3]}, m.image_width, m.image_height};
 }
 
 void RunAnalyzer::on_command(const gesture_cmd_t& m, int64_t recv_utime) {
@@ -139,6 +159,8 @@ void RunAnalyzer::on_truth(const ground_truth_t& m, int64_t) {
   note_seq("GROUND_TRUTH", true, "", m.seq);
   expected_mode_by_seq_[m.seq] = m.expected_mode;
   truth_by_seq_[m.seq] = {m.utime, m.gesture, m.expected_mode, {m.expected_direction[0], m.expected_direction[1]}};
+  truth_box_by_seq_[m.seq] = {{m.user_box[0], m.user_box[1], m.user_box[2], m.user_box[3]},
+                              std::hypot(m.person_position[0] - m.camera_position[0], m.person_position[1] - m.camera_position[1])};
   has_person_ = true;
   person_n_ = m.person_position[0];
   person_e_ = m.person_position[1];
@@ -198,6 +220,26 @@ Summary RunAnalyzer::summary() const {
   a.rule = "frames with a GESTURE_CMD and a GROUND_TRUTH of the same seq, expected_mode == mode; the first " +
            std::to_string(a.settle_frames) + " frames (decide.buffer_size / 2 + 1, buffer_size " +
            std::to_string(buffer_size_) + ") from the start and from each change of GROUND_TRUTH.expected_mode are not counted";
+  for (size_t b = 0; b < kRangeBandEdges.size(); ++b)
+    s.range_bands.push_back({kRangeBandEdges[b], b + 1 < kRangeBandEdges.size() ? kRangeBandEdges[b + 1] : INFINITY, 0, 0, 0, {}});
+  const auto band_of = [&s](int64_t seq, const std::map<int64_t, TruthBox>& boxes) -> RangeBand* {
+    const auto t = boxes.find(seq);
+    if (t == boxes.end()) return nullptr;
+    for (auto& b : s.range_bands)
+      if (t->second.range_m >= b.from_m && t->second.range_m < b.to_m) return &b;
+    return nullptr;
+  };
+  for (const auto& [seq, truth] : truth_box_by_seq_) {
+    RangeBand* band = band_of(seq, truth_box_by_seq_);
+    if (band) ++band->truth_frames;
+    const auto tr = track_box_by_seq_.find(seq);
+    if (tr == track_box_by_seq_.end() || !(truth.box[2] > 0 && truth.box[3] > 0)) continue;
+    const double cx = truth.box[0] + 0.5 * truth.box[2], cy = truth.box[1] + 0.5 * truth.box[3];
+    if (cx < 0 || cy < 0 || cx >= tr->second.width || cy >= tr->second.height) continue;  // the user is out of view
+    const double iou = box_iou(tr->second.box.data(), truth.box.data());
+    s.track_vs_truth.add(tr->second.status, iou);
+    if (band) band->track.add(tr->second.status, iou);
+  }
   int prev = -1;
   int64_t change_seq = 0;
   bool first = true;
@@ -215,6 +257,10 @@ Summary RunAnalyzer::summary() const {
     }
     ++a.evaluated;
     if (c->second == expected) ++a.correct;
+    if (RangeBand* band = band_of(seq, truth_box_by_seq_)) {
+      ++band->evaluated;
+      band->correct += c->second == expected;
+    }
     if (valid_mode(expected) && valid_mode(c->second))
       ++a.confusion[static_cast<size_t>(expected)][static_cast<size_t>(c->second)];
   }
@@ -286,6 +332,35 @@ json summary_json(const Summary& s, const json& extra) {
                            {"settle_frames", a.settle_frames},
                            {"rule", a.rule},
                            {"confusion", {{"modes", modes}, {"rows_expected_columns_decided", a.confusion}}}};
+  const auto track_json = [](const TrackVsTruth& t) {
+    return json{{"frames", t.frames},
+                {"tracking", t.tracking},
+                {"on_user", t.on_user},
+                {"on_user_percent", t.tracking ? sig6(100.0 * t.on_user / t.tracking) : json(nullptr)},
+                {"elsewhere", t.elsewhere},
+                {"mean_iou", t.tracking ? sig6(t.mean_iou()) : json(nullptr)},
+                {"min_iou", t.tracking ? sig6(t.iou_min) : json(nullptr)}};
+  };
+  j["track_vs_truth"] = track_json(s.track_vs_truth);
+  j["track_vs_truth"]["definition"] =
+      "USER_TRACK.box against GROUND_TRUTH.user_box of the same seq, frames with the user in view; on_user: TRACKING "
+      "with IoU >= 0.5; elsewhere: TRACKING with IoU < 0.2 (on a bystander or the background); IoU over TRACKING frames";
+  json bands = json::array();
+  for (const auto& b : s.range_bands) {
+    if (b.truth_frames == 0) continue;
+    bands.push_back({{"from_m", sig6(b.from_m)},
+                     {"to_m", std::isfinite(b.to_m) ? sig6(b.to_m) : json(nullptr)},
+                     {"truth_frames", b.truth_frames},
+                     {"evaluated", b.evaluated},
+                     {"correct", b.correct},
+                     {"accuracy_percent", b.evaluated ? sig6(100.0 * b.correct / b.evaluated) : json(nullptr)},
+                     {"track", track_json(b.track)}});
+  }
+  j["range_bands"] = {{"bands", bands},
+                      {"definition",
+                       "per band of the drone's horizontal range to the user (GROUND_TRUTH camera_position to "
+                       "person_position; bands without frames left out): gesture_accuracy's frames and rule, and "
+                       "track_vs_truth"}};
   const Score& r = s.reaction;
   j["gesture_reaction"] = {
       {"changes", r.changes},
@@ -378,6 +453,25 @@ std::string summary_table(const Summary& s) {
     line("%-18s", mode_name(e));
     for (int d = 0; d < kModes; ++d) line(" %8lld", static_cast<long long>(a.confusion[static_cast<size_t>(e)][static_cast<size_t>(d)]));
     t += "\n";
+  }
+  const TrackVsTruth& tv = s.track_vs_truth;
+  if (tv.frames)
+    line("\ntrack vs truth    %lld frames with a true box, TRACKING %lld: on the user (IoU >= 0.5) %lld, elsewhere "
+         "(IoU < 0.2) %lld; IoU mean %.3f, min %.3f\n",
+         static_cast<long long>(tv.frames), static_cast<long long>(tv.tracking), static_cast<long long>(tv.on_user),
+         static_cast<long long>(tv.elsewhere), tv.mean_iou(), tv.tracking ? tv.iou_min : 0.0);
+  bool header = false;
+  for (const auto& b : s.range_bands) {
+    if (b.truth_frames == 0) continue;
+    if (!header) line("%-18s %9s %9s %10s %9s %9s\n", "range (m)", "frames", "judged", "accuracy", "on user", "IoU");
+    header = true;
+    char name[32];
+    if (std::isfinite(b.to_m)) std::snprintf(name, sizeof name, "%g-%g", b.from_m, b.to_m);
+    else std::snprintf(name, sizeof name, ">= %g", b.from_m);
+    char acc[16] = "-";
+    if (b.evaluated) std::snprintf(acc, sizeof acc, "%.1f %%", 100.0 * b.correct / b.evaluated);
+    line("%-18s %9lld %9lld %10s %9lld %9.3f\n", name, static_cast<long long>(b.truth_frames),
+         static_cast<long long>(b.evaluated), acc, static_cast<long long>(b.track.on_user), b.track.mean_iou());
   }
   line("\nvehicle           %lld states, path %.2f m\n", static_cast<long long>(s.vehicle_states), s.path_length_m);
   return t;

@@ -70,6 +70,30 @@ struct ChannelGaps {
   int64_t streams = 0;    // publishers or restarts seen
 };
 
+// The track against the truth (issue 13): USER_TRACK's box against GROUND_TRUTH.user_box of the same seq, on
+// every frame where both exist and the user is in view (the true box's centre inside USER_TRACK's image; a
+// user behind or beside the camera is not). A box on the user has IoU >= 0.5;
+// one TRACKING with IoU < 0.2 follows something else (a bystander, the background).
+struct TrackVsTruth {
+  int64_t frames = 0;     // frames with both a USER_TRACK and a true box
+  int64_t tracking = 0;   // of those, TRACKING
+  int64_t on_user = 0;    // TRACKING with IoU >= 0.5
+  int64_t elsewhere = 0;  // TRACKING with IoU < 0.2
+  double iou_sum = 0;     // over the TRACKING frames
+  double iou_min = 1;     // over the TRACKING frames
+  double mean_iou() const { return tracking ? iou_sum / static_cast<double>(tracking) : 0.0; }
+  void add(int status, double iou);
+};
+
+// Gesture accuracy and the track per band of the drone's horizontal range to the user (GROUND_TRUTH's
+// camera_position to person_position): the paper flies the user from 5 m out to about 10 m.
+struct RangeBand {
+  double from_m = 0, to_m = 0;  // [from, to); to = infinity for the last band
+  int64_t truth_frames = 0;
+  int64_t evaluated = 0, correct = 0;  // as Accuracy (the same settling rule)
+  TrackVsTruth track;
+};
+
 struct Summary {
   int64_t frames = 0;
   double duration_s = 0;  // first to last CAMERA utime
@@ -83,6 +107,8 @@ struct Summary {
   LatencyStats pipeline_cmd, pipeline_setpoint;   // receipt - CAMERA receipt (both on the logger's clock)
   int64_t unmatched_commands = 0;                 // GESTURE_CMD whose CAMERA frame is not in the log
   Accuracy accuracy;
+  TrackVsTruth track_vs_truth;
+  std::vector<RangeBand> range_bands;  // kRangeBandEdges
   // Every frame counted (no settling skipped): gpilot-eval-decide's scoring of the recorded GESTURE_CMD against
   // GROUND_TRUTH (reaction to each true change, frames still carrying the old command, false commands).
   Score reaction;
@@ -101,6 +127,12 @@ struct TrajectoryPoint {
   bool has_person;
   double person_north, person_east;  // the latest GROUND_TRUTH person_position, when has_person
 };
+
+// The band edges of Summary::range_bands, metres: [0, 3) [3, 5) [5, 8) [8, 10) [10, inf).
+inline const std::vector<double> kRangeBandEdges = {0.0, 3.0, 5.0, 8.0, 10.0};
+
+// Intersection over union of two boxes (x, y, w, h); 0 when either is empty.
+double box_iou(const float a[4], const float b[4]);
 
 class RunAnalyzer {
  public:
@@ -130,6 +162,17 @@ class RunAnalyzer {
   std::map<int64_t, int> command_mode_by_seq_;
   std::map<int64_t, int> expected_mode_by_seq_;
   std::map<int64_t, TruthFrame> truth_by_seq_;
+  struct TruthBox {
+    std::array<float, 4> box{};
+    double range_m = 0;
+  };
+  struct TrackBox {
+    int status = 0;
+    std::array<float, 4> box{};
+    int width = 0, height = 0;  // of the image tracked
+  };
+  std::map<int64_t, TruthBox> truth_box_by_seq_;
+  std::map<int64_t, TrackBox> track_box_by_seq_;
   std::map<int64_t, ScoredCommand> command_by_seq_;
   std::array<int64_t, kModes> commands_by_mode_{};
   int64_t commands_ = 0, unmatched_ = 0;

@@ -150,6 +150,69 @@ TEST(RunSummaryJson, IsOneObjectWithTheKeysTheLeadReads) {
   EXPECT_EQ(json::parse(text)["log"], "a \"b\"\n");
 }
 
+// The track against the truth, and both per range band (issue 13). GIVEN 40 frames, the user's true box
+// 100x200 at (100, 50) and the drone 4 m from the user on frames 0..19, 9 m on 20..39; the track on the user
+// (IoU 1) on 0..9, shifted by half its width (IoU 1/3) on 10..19, on a bystander beside (IoU 0) on 20..29 and
+// LOST on 30..39 (the user out of view on 39); commands right on every frame but 25..39 WHEN summarised (buffer 2: 2 settling frames)
+// THEN the counts and IoUs per band are those.
+TEST(RunSummaryTrack, IouWithTheTrueBoxAndAccuracyPerRangeBand) {
+  RunAnalyzer a(2);
+  for (int64_t seq = 0; seq < 40; ++seq) {
+    ground_truth_t g{};
+    g.seq = seq;
+    g.utime = 1000 + seq;
+    const float box[4] = {100, 50, 100, 200};
+    std::copy(box, box + 4, g.user_box);
+    g.expected_mode = gesture_cmd_t::MODE_HOVER;
+    g.person_position[0] = seq < 20 ? 4.0f : 9.0f;
+    g.camera_position[1] = 0.0f;
+    a.on_truth(g, g.utime);
+    user_track_t t{};
+    t.seq = seq;
+    t.utime = g.utime;
+    t.status = seq < 30 ? user_track_t::STATUS_TRACKING : user_track_t::STATUS_LOST;
+    t.image_width = 640;
+    t.image_height = seq == 39 ? 100 : 480;  // frame 39: the user's box centre (150, 150) is out of view
+    const float dx = seq < 10 ? 0.0f : seq < 20 ? 50.0f : 300.0f;
+    const float tb[4] = {100 + dx, 50, 100, 200};
+    std::copy(tb, tb + 4, t.box);
+    a.on_track(t, t.utime);
+    gesture_cmd_t c{};
+    c.seq = seq;
+    c.mode = seq >= 25 ? gesture_cmd_t::MODE_UP : gesture_cmd_t::MODE_HOVER;
+    a.on_command(c, g.utime + 10);
+  }
+  const Summary s = a.summary();
+  const TrackVsTruth& t = s.track_vs_truth;
+  EXPECT_EQ(t.frames, 39);
+  EXPECT_EQ(t.tracking, 30);
+  EXPECT_EQ(t.on_user, 10);
+  EXPECT_EQ(t.elsewhere, 10);
+  EXPECT_NEAR(t.mean_iou(), (10 * 1.0 + 10 / 3.0) / 30, 1e-9);
+  EXPECT_NEAR(t.iou_min, 0.0, 1e-12);
+  ASSERT_EQ(s.range_bands.size(), 5u);
+  const RangeBand& near = s.range_bands[1];  // 3-5 m
+  EXPECT_EQ(near.truth_frames, 20);
+  EXPECT_EQ(near.evaluated, 18);  // the first 2 settle
+  EXPECT_EQ(near.correct, 18);
+  EXPECT_EQ(near.track.on_user, 10);
+  EXPECT_NEAR(near.track.mean_iou(), (1.0 + 1 / 3.0) / 2, 1e-9);
+  const RangeBand& far = s.range_bands[3];  // 8-10 m
+  EXPECT_EQ(far.truth_frames, 20);
+  EXPECT_EQ(far.evaluated, 20);
+  EXPECT_EQ(far.correct, 5);  // 20..24
+  EXPECT_EQ(far.track.frames, 19);
+  EXPECT_EQ(far.track.tracking, 10);
+  EXPECT_EQ(far.track.elsewhere, 10);
+  EXPECT_EQ(s.range_bands[0].truth_frames + s.range_bands[2].truth_frames + s.range_bands[4].truth_frames, 0);
+  const json j = summary_json(s);
+  EXPECT_EQ(j["track_vs_truth"]["on_user"], 10);
+  ASSERT_EQ(j["range_bands"]["bands"].size(), 2u);  // the empty bands are left out
+  EXPECT_EQ(j["range_bands"]["bands"][1]["from_m"], 8);
+  EXPECT_EQ(j["range_bands"]["bands"][1]["accuracy_percent"], 25);
+  EXPECT_NE(summary_table(s).find("8-10"), std::string::npos) << summary_table(s);
+}
+
 // The log's losses: gaps in seq per publisher's stream. GIVEN known gaps WHEN summarised THEN counted per
 // channel; only counter channels (one message per seq) make the logger's loss; a restart is a new stream.
 TEST(RunSummaryGaps, MessagesMissingFromTheLogPerChannel) {
