@@ -8,7 +8,6 @@
 // This is how a bug seen in the field is reproduced on a desk.
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <functional>
 #include <map>
 #include <set>
@@ -17,15 +16,20 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "decide/decide_channels.hpp"
 #include "decide/decide_service.hpp"
+#include "flight/flight_channels.hpp"
 #include "flight/flight_service.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "replay_pacing.hpp"
 #include "replay_ticks.hpp"
+#include "hands/hands_channels.hpp"
 #include "hands/hands_service.hpp"
 #include "config_schema.hpp"
 #include "log.hpp"
+#include "process_channels.hpp"
 #include "service_cli.hpp"
+#include "tracker/tracker_channels.hpp"
 #include "tracker/tracker_service.hpp"
 
 namespace gpilot {
@@ -51,17 +55,27 @@ std::shared_ptr<void> start_flight_replayed(const Config& config, BusNode& node)
 }
 
 ReplayTicks flight_ticks() {
+  using namespace flight_channels;
   return ReplayTicks(
-      "FLIGHT_SETPOINT",
+      kFlightSetpoint.name,
       [](const std::vector<uint8_t>& d, int64_t* utime, std::map<std::string, int64_t>* keys) {
         flight_setpoint_t m{};
         if (!decode_exactly(d.data(), d.size(), m).empty()) return false;
         *utime = m.utime;
-        (*keys)["GESTURE_CMD"] = m.latest_command_seq;
-        (*keys)["USER_TRACK"] = m.track_utime;
+        (*keys)[kGestureCmd.name] = m.latest_command_seq;
+        (*keys)[kUserTrack.name] = m.track_utime;
         return true;
       },
-      {{"GESTURE_CMD", seq_of}, {"USER_TRACK", utime_of}}, {{"GESTURE_CMD", -1}, {"USER_TRACK", 0}});
+      {{kGestureCmd.name, seq_of}, {kUserTrack.name, utime_of}}, {{kGestureCmd.name, -1}, {kUserTrack.name, 0}});
+}
+
+// The names a stage declares with this role (services/<stage>/<stage>_channels.hpp), but `except`.
+template <size_t N>
+std::vector<std::string> declared(const ChannelUse (&uses)[N], ChannelRole role, const std::string& except = "") {
+  std::vector<std::string> names;
+  for (const auto& u : uses)
+    if (u.role == role && u.name != except) names.emplace_back(u.name);
+  return names;
 }
 
 struct StageEntry {
@@ -72,12 +86,20 @@ struct StageEntry {
 };
 
 const std::map<std::string, StageEntry>& stages() {
+  using R = ChannelRole;
+  namespace tc = tracker_channels;
+  namespace hc = hands_channels;
+  namespace dc = decide_channels;
+  namespace fc = flight_channels;
   static const std::map<std::string, StageEntry> table = {
-      {"tracker", {start_tracker_service, {"CAMERA", "TRACKER_INIT"}, {"USER_TRACK"}, {{"CAMERA", "USER_TRACK"}}}},
-      {"hands", {start_hands_service, {"CAMERA", "USER_TRACK"}, {"HAND_OBS"}, {{"CAMERA", "HAND_OBS"}}}},
-      {"decide", {start_decide_service, {"HAND_OBS"}, {"GESTURE_CMD"}}},
-      {"flight", {start_flight_replayed, {"GESTURE_CMD", "USER_TRACK", "VEHICLE_STATE", "FLIGHT_CONTROL"},
-                  {"FLIGHT_SETPOINT"}, {}, flight_ticks}},
+      {"tracker", {start_tracker_service, declared(tc::kUses, R::In), declared(tc::kUses, R::Out),
+                   {{tc::kCamera.name, tc::kUserTrack.name}}}},
+      {"hands", {start_hands_service, declared(hc::kUses, R::In), declared(hc::kUses, R::Out),
+                 {{hc::kCamera.name, hc::kHandObs.name}}}},
+      {"decide", {start_decide_service, declared(dc::kUses, R::In), declared(dc::kUses, R::Out)}},
+      // With backend none the vehicle is the log's: its VEHICLE_STATE is an input here, not an output.
+      {"flight", {start_flight_replayed, declared(fc::kUses, R::In),
+                  declared(fc::kUses, R::Out, fc::kVehicleState.name), {}, flight_ticks}},
   };
   return table;
 }
@@ -95,7 +117,7 @@ int main(int argc, char** argv) {
                  "FLIGHT_SETPOINT: gpilot-flight's service with its timer fired at each recorded setpoint's time; the\n"
                  "vehicle's states come from the log; alone, not in a chain), or a chain such as tracker,hands,decide.");
   std::string in_path, out_path, stage_arg;
-  bool check = false, inputs_only = false, all_frames = false;
+  bool check = false, inputs_only = false, all_frames = false, recorded_outputs = false;
   double from_s = 0, to_s = 0;
   cli.app().add_option("log", in_path, "the recorded LCM log")->required();
   cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide, flight")->required();
@@ -104,6 +126,9 @@ int main(int argc, char** argv) {
   cli.app().add_option("--from", from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
   cli.app().add_option("--to", to_s, "stop this many seconds after the log's first event (0 = the end)")->check(CLI::NonNegativeNumber);
   cli.app().add_flag("--inputs-only", inputs_only, "the new log holds only the stages' inputs and outputs (small logs)");
+  cli.app().add_flag("--recorded-outputs", recorded_outputs,
+                     "the new log holds the recorded outputs and the stages' logged CONFIG, not the replay's: a cut of\n"
+                     "a live run, whose replay is then checked against what the live stages sent (tests/replay)");
   cli.app().add_flag("--all-frames", all_frames,
                      "give the stages every recorded frame (default: only those the live stages processed, i.e. whose\n"
                      "USER_TRACK / HAND_OBS the log records; a log without those outputs gives every frame)");
@@ -141,7 +166,7 @@ int main(int argc, char** argv) {
         if (paced_outputs.count(ev->channel)) {
           const auto* p = static_cast<const uint8_t*>(ev->data);
           pacing.recorded(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
-        } else if (!cli.config_given() && std::strcmp(ev->channel.c_str(), "CONFIG") == 0) {
+        } else if (!cli.config_given() && ev->channel == process_channels::kConfig.name) {
           config_t c{};
           if (c.decode(ev->data, 0, ev->datalen) > 0 && check_message(c).empty()) logged_yaml.emplace(c.process, c.yaml);
         }
@@ -198,7 +223,7 @@ int main(int argc, char** argv) {
         c.yaml = effective_config_yaml(stage_config.at(s));
         std::vector<uint8_t> bytes(static_cast<size_t>(c.getEncodedSize()));
         c.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-        write(ts, "CONFIG", bytes.data(), bytes.size());
+        write(ts, process_channels::kConfig.name, bytes.data(), bytes.size());
       }
       configs_written = true;
     };
@@ -212,7 +237,7 @@ int main(int argc, char** argv) {
     for (const auto& o : outputs)
       node.subscribe_raw(o, [&](const std::string& ch, const void* data, size_t size, int64_t) {
         produced[ch].push_back(message_of(data, size));
-        write(now_ts, ch, data, size);
+        if (!recorded_outputs) write(now_ts, ch, data, size);
       });
 
     int64_t n_events = 0, n_inputs = 0, first_ts = -1;
@@ -225,16 +250,18 @@ int main(int argc, char** argv) {
       now_ts = ev->timestamp;
       const auto* p = static_cast<const uint8_t*>(ev->data);
       node.set_log_time(now_ts);  // the stages' clock is the log's (BusNode::now)
-      if (!configs_written) write_configs(now_ts);
-      if (ev->channel == "CONFIG") {  // a replayed stage's is replaced by the one it replays with
+      if (!configs_written && !recorded_outputs) write_configs(now_ts);
+      if (ev->channel == process_channels::kConfig.name) {  // a replayed stage's is replaced by the one it replays with
         config_t c{};
         const bool replayed = c.decode(ev->data, 0, ev->datalen) > 0 && c.process.rfind("gpilot-", 0) == 0 &&
                               std::find(chain.begin(), chain.end(), c.process.substr(7)) != chain.end();
-        if (!replayed && !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
+        if ((replayed && recorded_outputs) || (!replayed && !inputs_only))
+          write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
         continue;
       }
       if (outputs.count(ev->channel)) {
         recorded[ev->channel].push_back(message_of(p, static_cast<size_t>(ev->datalen)));
+        if (recorded_outputs) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
         if (ticks && ev->channel == ticks->output()) {
           // The live stage's timer fired here: first the inputs it had, then the tick at its own instant.
           const int64_t tick_utime = ticks->tick(recorded[ev->channel].back(), [&](const std::string& ch, int64_t ts,
@@ -249,7 +276,7 @@ int main(int argc, char** argv) {
         }
         continue;
       }
-      if (ev->channel == "HEALTH") continue;  // the live processes' health is not part of a replay
+      if (ev->channel == process_channels::kHealth.name) continue;  // the live processes' health is not part of a replay
       const bool input = inputs.count(ev->channel) > 0;
       if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       if (!input) continue;
