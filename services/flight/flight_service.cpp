@@ -11,6 +11,7 @@
 
 #include "bus_key.hpp"
 #include "flight_bridge.hpp"
+#include "flight_channels.hpp"
 #include "flight_messages.hpp"
 #include "log.hpp"
 #include "mavlink/offboard_loss.hpp"
@@ -57,17 +58,17 @@ class FlightService {
   }
 
   void start() {
-    node_.subscribe<gesture_cmd_t>("GESTURE_CMD", [this](const gesture_cmd_t& m, int64_t) {
+    subscribe(node_, flight_channels::kGestureCmd, [this](const gesture_cmd_t& m, int64_t) {
       in_.command = to_core(m);
       new_command_ = true;
     });
-    node_.subscribe<user_track_t>("USER_TRACK", [this](const user_track_t& m, int64_t) {
+    subscribe(node_, flight_channels::kUserTrack, [this](const user_track_t& m, int64_t) {
       in_.track = to_core(m);
       new_track_ = true;
     });
-    node_.subscribe<flight_control_t>("FLIGHT_CONTROL", [this](const flight_control_t& m, int64_t) { control(m); });
+    subscribe(node_, flight_channels::kFlightControl, [this](const flight_control_t& m, int64_t) { control(m); });
     if (fp_.backend == "none") {
-      node_.subscribe<vehicle_state_t>("VEHICLE_STATE", [this](const vehicle_state_t& m, int64_t) { vehicle(m); });
+      subscribe(node_, flight_channels::kVehicleState, [this](const vehicle_state_t& m, int64_t) { vehicle(m); });
     }
     node_.every(1.0 / fp_.setpoint_rate_hz, [this] { tick(); });
     if (sim_) node_.every(1.0 / sim_params_.rate_hz, [this] { step_sim(); });
@@ -176,7 +177,7 @@ class FlightService {
     if (new_vehicle_) in_.vehicle_received = in_.now;
     new_command_ = new_track_ = new_vehicle_ = false;
     last_ = bridge_.update(in_);
-    node_.publish("FLIGHT_SETPOINT", to_message(last_));
+    publish(node_, flight_channels::kFlightSetpoint, to_message(last_));
     if (session_ && in_.engaged) {
       link_->send(session_->setpoint(last_, in_.now));
       // PX4 accepts OFFBOARD only once setpoints are streaming: ask after a short run of them.
@@ -187,7 +188,7 @@ class FlightService {
   void step_sim() {
     sim_->step(last_, 1.0 / sim_params_.rate_hz);
     const vehicle_state_t m = to_message(sim_->state(node_.now()), vehicle_state_t::SOURCE_SIMULATOR);
-    node_.publish("VEHICLE_STATE", m);
+    publish(node_, flight_channels::kVehicleState, m);
     vehicle(m);
   }
 
@@ -204,7 +205,7 @@ class FlightService {
       for (const auto& v : session_->take_param_values()) gate_act(gate_->on_param_value(v));
       if (state) {
         const vehicle_state_t m = to_message(*state, vehicle_state_t::SOURCE_MAVLINK);
-        node_.publish("VEHICLE_STATE", m);
+        publish(node_, flight_channels::kVehicleState, m);
         vehicle(m);
       }
     }
