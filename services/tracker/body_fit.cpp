@@ -212,4 +212,40 @@ BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProport
   return f;
 }
 
+std::vector<float> torso_colours(const cv::Mat& frame, const cv::Rect2d& face, const BodyFitParams& p, int bins,
+                                 double dark_level) {
+  std::vector<float> h;
+  if (frame.empty() || frame.type() != CV_8UC3 || !(face.width > 0 && face.height > 0) || bins < 1) return h;
+  const double fw = face.width, fh = face.height, cx = face.x + fw / 2;
+  const cv::Rect torso = cv::Rect(cv::Rect2d(cx - p.torso_half_width_in_faces * fw, face.y + fh + p.torso_gap_in_faces * fh,
+                                             2 * p.torso_half_width_in_faces * fw, p.torso_height_in_faces * fh)) &
+                         cv::Rect(0, 0, frame.cols, frame.rows);
+  if (torso.width < 1 || torso.height < 1) return h;
+  const int step = std::max(1, static_cast<int>(fw / p.fit_face_px));
+  const double min_sum = 3.0 * dark_level;
+  h.assign(static_cast<size_t>(bins * bins), 0.0f);
+  double n = 0;
+  for (int y = torso.y; y < torso.br().y; y += step) {
+    const cv::Vec3b* row = frame.ptr<cv::Vec3b>(y);
+    for (int x = torso.x; x < torso.br().x; x += step) {
+      const double b = row[x][0], g = row[x][1], r = row[x][2], sum = b + g + r;
+      if (sum < min_sum || sum <= 0) continue;
+      const int ri = std::min(bins - 1, static_cast<int>(r / sum * bins));
+      const int gi = std::min(bins - 1, static_cast<int>(g / sum * bins));
+      h[static_cast<size_t>(ri * bins + gi)] += 1.0f;
+      n += 1;
+    }
+  }
+  if (n <= 0) return {};
+  for (float& v : h) v = static_cast<float>(v / n);
+  return h;
+}
+
+double colour_match(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.empty() || b.empty() || a.size() != b.size()) return -1.0;
+  double bc = 0;
+  for (size_t i = 0; i < a.size(); ++i) bc += std::sqrt(static_cast<double>(a[i]) * b[i]);
+  return bc;
+}
+
 }  // namespace gpilot

@@ -9,6 +9,8 @@
 // Plain function, no state: the same frame and face give the same answer.
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "body_proportions.hpp"
@@ -43,5 +45,17 @@ struct BodyFit {
 // frame: CV_8UC3 (BGR) or CV_8UC1; face: the cascade's face box in frame pixels (positive size). preset: the
 // head-body ratios (TrackerParams::body()).
 BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProportions& preset, const BodyFitParams& p);
+
+// The colours of the torso under a face (fit_body's torso sample: torso_*_in_faces of p), as a histogram of
+// chromaticity (r / (b + g + r), g / (b + g + r), bins x bins; a gain on the light leaves it unchanged) over
+// the pixels whose mean level is at least dark_level (a dark pixel's chromaticity is noise), read on a grid
+// where the face is at most p.fit_face_px wide; normalised to sum 1. Empty for a grey frame, or when no pixel
+// of the sample is in view and bright enough. What tells the user from a look-alike beside them (issue 13:
+// a bystander with the same face passing in front): their clothes.
+std::vector<float> torso_colours(const cv::Mat& frame, const cv::Rect2d& face, const BodyFitParams& p, int bins,
+                                 double dark_level);
+// Bhattacharyya coefficient of two normalised histograms (1: the same colours, 0: none shared); -1 when either is
+// empty or they differ in size (nothing to compare).
+double colour_match(const std::vector<float>& a, const std::vector<float>& b);
 
 }  // namespace gpilot

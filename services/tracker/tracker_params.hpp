@@ -203,6 +203,19 @@ struct TrackerParams {
   // image's edge a miss does not count (flight keeps the face in view: flight.keep_face_in_view).
   int face_recheck_misses = 3;         //!< 0: never LOST for this (manual tracks never are)
   double face_miss_psr = 12.0;         //!< a re-check miss counts only when the frame's PSR is below this
+  // The user, not a bystander (issue 13): a face the re-check finds is the user's only when the torso under it
+  // wears the user's clothes. A track started from a face keeps the chromaticity histogram of the torso under
+  // it (body_fit's torso sample, torso_colour_bins^2 bins, pixels darker than torso_dark_level not read) and
+  // blends in each re-check's that matches at torso_colour_rate; a face whose torso matches less than
+  // recheck_min_torso_match (Bhattacharyya coefficient) is not the user's: no re-anchor, a miss; while LOST,
+  // no track is started on it (once SEARCHING, any face may be the user). A passer-by with the user's face
+  // (the same portrait) crossing between user and drone re-anchored the track on themselves at the re-check
+  // and the drone followed them (scenario bystander). 0: off (manual tracks and grey frames have no torso
+  // colours: never gated).
+  double recheck_min_torso_match = 0.5;
+  double torso_colour_rate = 0.2;
+  int torso_colour_bins = 8;
+  double torso_dark_level = 20.0;
 
   template <class V>
   void visit(V& v) {
@@ -226,6 +239,10 @@ struct TrackerParams {
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
     v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");
     v("face_miss_psr", face_miss_psr, 0.0, 1000.0, "a re-check miss counts only when the frame's PSR is below this");
+    v("recheck_min_torso_match", recheck_min_torso_match, 0.0, 1.0, "re-check: a face whose torso colours match the track's less is not the user's (0: off)");
+    v("torso_colour_rate", torso_colour_rate, 0.0, 1.0, "blend rate of the track's torso colours at each matching re-check");
+    v("torso_colour_bins", torso_colour_bins, 2, 64, "torso colours: chromaticity bins per axis");
+    v("torso_dark_level", torso_dark_level, 0.0, 255.0, "torso colours: pixels with a mean level below this are not read");
   }
 };
 

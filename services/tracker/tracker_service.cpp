@@ -92,6 +92,8 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
         refused += (refused.empty() ? "" : ", ") + std::to_string(n) + " " + gpilot::refusal_text(why);
     }
     if (!refused.empty()) detail += "; faces refused: " + refused;
+    if (const int64_t n = tracker.other_faces(); n > 0)
+      detail += "; faces not the user's (other clothes): " + std::to_string(n);
     node.set_state(out.status == gpilot::TrackStatus::kTracking ? gpilot::health_t::STATE_OK
                                                                 : gpilot::health_t::STATE_DEGRADED,
                    detail);

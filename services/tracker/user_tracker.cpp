@@ -86,11 +86,31 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
   if (scale > std::log(2.0)) return FaceCheck::Missed;  // not this user's face
+  // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
+  if (!wears_users_clothes(frame, face->face, true)) {
+    ++other_faces_;
+    return FaceCheck::Missed;
+  }
   if (scale > std::log1p(p_.face_recheck_tolerance) ||
       std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width)
     start(frame, body, out_.init, false);
   found_face(frame, face->face);
   return FaceCheck::Found;
+}
+
+// Whether the torso under a face wears the track's clothes (recheck_min_torso_match); true when there is
+// nothing to compare (the gate off, a manual track, a grey frame, no torso in view). learn: blend a matching
+// torso's colours into the track's.
+bool UserTracker::wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn) {
+  if (p_.recheck_min_torso_match <= 0 || torso_colours_.empty()) return true;
+  const std::vector<float> seen = torso_colours(frame, face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+  const double match = colour_match(torso_colours_, seen);
+  if (match < 0) return true;
+  if (match < p_.recheck_min_torso_match) return false;
+  if (learn)
+    for (size_t i = 0; i < seen.size(); ++i)
+      torso_colours_[i] += static_cast<float>(p_.torso_colour_rate) * (seen[i] - torso_colours_[i]);
+  return true;
 }
 
 // One face search within the per-frame budget: SEARCHING, a step of the whole-frame scan (FaceDetector::
@@ -112,6 +132,12 @@ bool UserTracker::search(const cv::Mat& frame) {
   // largest face first: a face with no body in view under it (on a poster, at the bottom edge) is refused
   // (counted) and the next one tried; else the box is fitted to the person.
   for (const FaceDetection& face : faces) {
+    // While LOST the user is known: a face in other clothes is someone else's (a look-alike who walked in
+    // front took the track with them). Once SEARCHING, the box dropped, any face may be the user.
+    if (out_.status == TrackStatus::kLost && !wears_users_clothes(frame, face.face)) {
+      ++other_faces_;
+      continue;
+    }
     const BodyFit fit = fit_body(frame, face.face, p_.body(), p_.body_fit);
     if (fit.refused != FaceRefusal::kNone) {
       ++refusals_[static_cast<size_t>(fit.refused)];
@@ -121,6 +147,7 @@ bool UserTracker::search(const cv::Mat& frame) {
     // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
     track_body_ = fit.body;
     start(frame, fit.box, InitSource::kFace);
+    torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
     found_face(frame, face.face);
     faces_.restart_scan();  // the next search (after a loss) scans from the first tile
     return true;
@@ -212,6 +239,7 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     pending_box_.reset();
     if (box.width >= 2 && box.height >= 2) {
       track_body_ = p_.body();  // a manual box's face re-check uses the preset ratios
+      torso_colours_.clear();   // and knows no clothes: its re-check is not gated by them
       start(frame, box, InitSource::kManual);
       return out_;
     }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -57,6 +58,8 @@ class UserTracker {
   int bad_frames() const { return bad_frames_; }
   //! Faces refused for this reason since construction (HEALTH).
   int64_t refusals(FaceRefusal why) const { return refusals_[static_cast<size_t>(why)]; }
+  //! Faces the re-check found whose torso did not wear the user's clothes (recheck_min_torso_match): not re-anchored on.
+  int64_t other_faces() const { return other_faces_; }
   //! The ratios of the current track's body box to its face (the preset, or fitted when it started on a face).
   const BodyProportions& track_body() const { return track_body_; }
 
@@ -69,6 +72,7 @@ class UserTracker {
   void lose(bool model_trusted);
   enum class FaceCheck { Found, Missed, OutOfView };
   FaceCheck recheck_face(const cv::Mat& frame);
+  bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
 
   TrackerParams p_;
@@ -89,6 +93,8 @@ class UserTracker {
   int redetect_hits_ = 0;      //!< LOST frames in a row where the last good filter's PSR was >= redetect_psr
   bool redetect_ok_ = false;   //!< the last good filter may re-find the target (not after a face-miss loss)
   int64_t searches_ = 0;       //!< face searches since the last track, for the full/local alternation
+  int64_t other_faces_ = 0;
+  std::vector<float> torso_colours_;  //!< the user's torso chromaticity (tracks from a face; empty: no gate)
 };
 
 }  // namespace gpilot
