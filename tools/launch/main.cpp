@@ -116,6 +116,22 @@ void watch(Child& c, int64_t now, BusNode& node) {
   c.frozen_since = c.last_ping;
 }
 
+// A recorder records once its file holds a message (lcm-logger flushes every 100 ms): the launcher's HEALTH
+// gives it one. Until then a process started next could publish its CONFIG before the recorder listens.
+void wait_for_recording(const std::string& name, const std::string& path, BusNode& node) {
+  const int64_t end = monotonic_utime() + 5 * kMicrosPerSecond;
+  for (;;) {
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    if (!ec && size > 0) return;
+    if (monotonic_utime() >= end) break;
+    node.publish_health();
+    usleep(50000);
+  }
+  log_warn("%s: %s still empty after 5 s: starting the others anyway (their CONFIG may miss the log)", name.c_str(),
+           path.c_str());
+}
+
 void stop_child(Child& c) {
   if (c.pid <= 0) return;
   kill(c.pid, c.spec.stop_signal);
@@ -215,6 +231,7 @@ int main(int argc, char** argv) {
       for (const auto& w : s.command) command += " " + w;
       log_info("started %s (pid %d):%s", s.name.c_str(), c.pid, command.c_str());
       children.push_back(std::move(c));
+      if (!s.ready_file.empty()) wait_for_recording(s.name, s.ready_file, node);
     }
     node.set_state(health_t::STATE_OK, "running " + std::to_string(children.size()) + " processes");
 

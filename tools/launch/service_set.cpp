@@ -56,7 +56,7 @@ std::vector<ServiceSpec> parse_service_set(const std::string& yaml_text, const s
     for (const auto& kv : n) {
       const std::string key = kv.first.as<std::string>();
       if (key != "name" && key != "command" && key != "respawn" && key != "stop_signal" && key != "stop_timeout_s" &&
-          key != "ends_run" && key != "optional" && key != "only_if" && key != "watchdog_s")
+          key != "ends_run" && key != "optional" && key != "only_if" && key != "watchdog_s" && key != "ready_file")
         throw ServiceSetError(s.name + ": unknown key '" + key + "'");
     }
     for (const auto& w : n["command"]) {
@@ -77,6 +77,7 @@ std::vector<ServiceSpec> parse_service_set(const std::string& yaml_text, const s
       }
     if (s.stop_timeout_s <= 0 || s.stop_timeout_s > 300) throw ServiceSetError(s.name + ": stop_timeout_s out of (0, 300]");
     if (n["watchdog_s"]) s.watchdog_s = n["watchdog_s"].as<double>();
+    if (n["ready_file"]) s.ready_file = substitute(n["ready_file"].as<std::string>(), vars);
     if (s.watchdog_s < 0 || s.watchdog_s > 60) throw ServiceSetError(s.name + ": watchdog_s out of [0, 60]");
     out.push_back(std::move(s));
   }

@@ -23,6 +23,9 @@ struct ServiceSpec {
   // a process silent for longer is killed and restarted. systemd: Type=notify + WatchdogSec; gpilot-launch:
   // the same protocol on a NOTIFY_SOCKET of its own (notify_socket.hpp).
   double watchdog_s = 0;
+  // Not empty: the next service starts once this file is non-empty (lcm-logger: it records), at most 5 s later,
+  // so the others' first messages (each process's CONFIG, which a replay reads) are in the log.
+  std::string ready_file;
 };
 
 class ServiceSetError : public std::runtime_error {

@@ -36,6 +36,19 @@ services:
   EXPECT_FALSE(s[1].respawn);
   EXPECT_EQ(s[1].stop_signal, SIGTERM);
   EXPECT_EQ(s[1].only_if, std::vector<std::string>{"log"});
+  EXPECT_EQ(s[0].ready_file, "");
+}
+
+TEST(ServiceSet, ReadyFileIsSubstituted) {
+  const std::string yaml = R"(
+services:
+  - name: logger
+    command: [lcm-logger, "${log}"]
+    ready_file: "${log}"
+)";
+  const auto s = parse_service_set(yaml, {{"log", "/tmp/run/log.lcmlog"}});
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].ready_file, "/tmp/run/log.lcmlog");
 }
 
 TEST(ServiceSet, ErrorsNameTheProblem) {
