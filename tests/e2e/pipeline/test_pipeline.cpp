@@ -336,10 +336,10 @@ TEST_P(ScenarioE2E, TrajectoryDoesWhatTheGesturesAsk) {
   EXPECT_LE(flown.false_at_rest, sc.max_false_at_rest) << "the drone was asked to move while the user rested";
   if (!given) {
     // The live run replays: each stage's code over what it received, with the config it published on CONFIG,
-    // gives exactly what it sent (as ./deploy/run checks after a flight). A log given with GPILOT_E2E_LOG may
-    // come from older code and is not replayed. Not flight yet: it runs on its own timer, and a setpoint sent
-    // before the first frame (seq -1) can differ in replay (closer-further, 1 of 2042; issue 15).
-    for (const char* stage : {"tracker", "hands", "decide"}) {
+    // gives exactly what it sent (as ./deploy/run checks after a flight). Flight too: its service with its
+    // timer fired at the recorded setpoints' instants, from the first one (tools/replay/replay_ticks.hpp).
+    // A log given with GPILOT_E2E_LOG may come from older code and is not replayed.
+    for (const char* stage : {"tracker", "hands", "decide", "flight"}) {
       const test::CommandOutput replay =
           test::run_command(std::string(GPILOT_BIN_DIR) + "/gpilot-replay " + path + " --stage " + stage + " --check 2>/dev/null");
       EXPECT_EQ(replay.code, 0) << stage << "'s replay of the live run differs:\n" << replay.out;
