@@ -45,6 +45,55 @@ int64_t int64_at(const std::vector<uint8_t>& d, size_t at) {
 int64_t utime_of(const std::vector<uint8_t>& d) { return int64_at(d, 8); }
 int64_t seq_of(const std::vector<uint8_t>& d) { return int64_at(d, 16); }
 
+// The replay's outputs against the recorded ones, message by message, paired by (utime, seq): one output the
+// logger lost (or one the replay did not give) is one difference, not a shift of every message after it.
+// With a key twice on either side (no stage sends that), by position.
+struct OutputComparison {
+  int differing = 0, only_new = 0, only_recorded = 0;
+  std::vector<int64_t> first_seqs;  // of the first differences
+};
+OutputComparison compare_outputs(const std::vector<std::vector<uint8_t>>& replayed,
+                                 const std::vector<std::vector<uint8_t>>& recorded) {
+  OutputComparison c;
+  const auto note = [&](const std::vector<uint8_t>& m) {
+    if (c.first_seqs.size() < 5) c.first_seqs.push_back(seq_of(m));
+  };
+  using Key = std::pair<int64_t, int64_t>;
+  std::map<Key, const std::vector<uint8_t>*> by_key;
+  bool unique = true;
+  for (const auto& m : recorded) unique = by_key.emplace(Key{utime_of(m), seq_of(m)}, &m).second && unique;
+  std::set<Key> seen;
+  for (const auto& m : replayed) unique = seen.insert(Key{utime_of(m), seq_of(m)}).second && unique;
+  if (!unique) {
+    for (size_t i = 0; i < std::min(replayed.size(), recorded.size()); ++i)
+      if (replayed[i] != recorded[i]) {
+        ++c.differing;
+        note(recorded[i]);
+      }
+    (replayed.size() > recorded.size() ? c.only_new : c.only_recorded) +=
+        static_cast<int>(std::max(replayed.size(), recorded.size()) - std::min(replayed.size(), recorded.size()));
+    return c;
+  }
+  for (const auto& m : replayed) {
+    const auto it = by_key.find(Key{utime_of(m), seq_of(m)});
+    if (it == by_key.end()) {
+      ++c.only_new;
+      note(m);
+      continue;
+    }
+    if (*it->second != m) {
+      ++c.differing;
+      note(m);
+    }
+    by_key.erase(it);
+  }
+  for (const auto& [key, m] : by_key) {
+    ++c.only_recorded;
+    note(*m);
+  }
+  return c;
+}
+
 // gpilot-flight over a log: the same service, its vehicle states from the log (backend none: the vehicle is
 // not simulated or flown again, the bridge's decisions are replayed), its setpoint timer fired at each recorded
 // FLIGHT_SETPOINT's utime with the command and track that setpoint names (ReplayTicks).
@@ -305,16 +354,15 @@ int main(int argc, char** argv) {
         std::printf("\n");
         continue;
       }
-      int diff = static_cast<int>(a.size() > b.size() ? a.size() - b.size() : b.size() - a.size());
-      std::vector<int64_t> first_seqs;
-      for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
-        if (a[i] != b[i]) {
-          ++diff;
-          if (first_seqs.size() < 5) first_seqs.push_back(seq_of(b[i]));
-        }
+      const OutputComparison c = compare_outputs(a, b);
+      const int diff = c.differing + c.only_new + c.only_recorded;
       std::printf("  differences %d", diff);
-      for (size_t i = 0; i < first_seqs.size(); ++i) std::printf("%s%lld", i ? ", " : "  (seq ", static_cast<long long>(first_seqs[i]));
-      std::printf("%s\n", first_seqs.empty() ? "" : ")");
+      for (size_t i = 0; i < c.first_seqs.size(); ++i)
+        std::printf("%s%lld", i ? ", " : "  (seq ", static_cast<long long>(c.first_seqs[i]));
+      std::printf("%s", c.first_seqs.empty() ? "" : ")");
+      if (c.only_new || c.only_recorded)
+        std::printf("  [%d not in the log (lost by the logger?), %d not replayed]", c.only_new, c.only_recorded);
+      std::printf("\n");
       differences += diff;
     }
     if (check) std::printf("%d differences\n", differences);
