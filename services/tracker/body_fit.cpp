@@ -198,11 +198,11 @@ BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProport
   }
 
   // Applied only beyond fit_tolerance (the preset is right for most people), within [fit_min, fit_max].
-  const auto settle = [&](double r) {
-    return std::abs(std::log(r)) <= std::log1p(p.fit_tolerance) ? 1.0 : std::clamp(r, p.fit_min, p.fit_max);
+  const auto settle = [&](double r, double max) {
+    return std::abs(std::log(r)) <= std::log1p(p.fit_tolerance) ? 1.0 : std::clamp(r, p.fit_min, std::max(p.fit_min, max));
   };
-  const double wr = f.width_seen ? settle(std::max(f.width_ratio, 1e-3)) : 1.0;
-  const double hr = f.height_seen ? settle(std::max(f.height_ratio, 1e-3)) : 1.0;
+  const double wr = f.width_seen ? settle(std::max(f.width_ratio, 1e-3), p.fit_max) : 1.0;
+  const double hr = f.height_seen ? settle(std::max(f.height_ratio, 1e-3), std::min(p.fit_max, p.fit_max_height)) : 1.0;
   const double shift = std::abs(f.shift * fw) <= p.fit_tolerance * b.width ? 0.0
                                                                            : std::clamp(f.shift, -p.max_shift_in_faces, p.max_shift_in_faces);
   f.body.width_in_faces *= wr;
