@@ -66,7 +66,10 @@ class FlightService {
       in_.track = to_core(m);
       new_track_ = true;
     });
-    subscribe(node_, flight_channels::kFlightControl, [this](const flight_control_t& m, int64_t) { control(m); });
+    subscribe(node_, flight_channels::kFlightControl, [this](const flight_control_t& m, int64_t) {
+      control_utime_ = m.utime;
+      control(m);
+    });
     if (fp_.backend == "none") {
       subscribe(node_, flight_channels::kVehicleState, [this](const vehicle_state_t& m, int64_t) { vehicle(m); });
     }
@@ -177,7 +180,9 @@ class FlightService {
     if (new_vehicle_) in_.vehicle_received = in_.now;
     new_command_ = new_track_ = new_vehicle_ = false;
     last_ = bridge_.update(in_);
-    publish(node_, flight_channels::kFlightSetpoint, to_message(last_));
+    flight_setpoint_t sp = to_message(last_);
+    sp.control_utime = control_utime_;  // the operator's request it had (a replay applies it before this tick)
+    publish(node_, flight_channels::kFlightSetpoint, sp);
     if (session_ && in_.engaged) {
       link_->send(session_->setpoint(last_, in_.now));
       // PX4 accepts OFFBOARD only once setpoints are streaming: ask after a short run of them.
@@ -230,6 +235,7 @@ class FlightService {
   FlightBridge bridge_;
   BridgeInputs in_;
   bool new_command_ = false, new_track_ = false, new_vehicle_ = false;  // arrived since the last tick
+  int64_t control_utime_ = 0;                                           // the newest FLIGHT_CONTROL's utime
   Setpoint last_;
   std::optional<QuadrotorSim> sim_;
   std::unique_ptr<mavlink::UdpLink> link_;

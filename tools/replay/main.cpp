@@ -113,9 +113,11 @@ ReplayTicks flight_ticks() {
         *utime = m.utime;
         (*keys)[kGestureCmd.name] = m.latest_command_seq;
         (*keys)[kUserTrack.name] = m.track_utime;
+        (*keys)[kFlightControl.name] = m.control_utime;
         return true;
       },
-      {{kGestureCmd.name, seq_of}, {kUserTrack.name, utime_of}}, {{kGestureCmd.name, -1}, {kUserTrack.name, 0}});
+      {{kGestureCmd.name, seq_of}, {kUserTrack.name, utime_of}, {kFlightControl.name, utime_of}},
+      {{kGestureCmd.name, -1}, {kUserTrack.name, 0}, {kFlightControl.name, 0}});
 }
 
 // The names a stage declares with this role (services/<stage>/<stage>_channels.hpp), but `except`.

@@ -1,12 +1,13 @@
 // When a timer-driven stage (gpilot-flight) ticked in the live run, and which inputs it had then. Live, the
 // stage's timer fires on its own clock between arrivals, and each output it publishes then is stamped with that
 // instant (utime) and names the newest input of each keyed channel it was computed from (FLIGHT_SETPOINT:
-// latest_command_seq, track_utime). The logger writes what was sent in the order it was sent, so every input
+// latest_command_seq, track_utime, control_utime). The logger writes what was sent in the order it was sent, so every input
 // a tick had is logged before that tick's output; but an input sent just before a tick that the stage had not
 // yet dispatched is logged before the output too, and was not used. So a logged input of a keyed channel is
 // held back until the first recorded output that names it (or a later input of its channel), and the stage's
 // timer is fired at each recorded output's own utime (BusNode::run_timers_at). Other inputs (the vehicle
-// states the flight process publishes itself, the operator's requests) go in log order.
+// states the flight process publishes itself, in the order it logged them) go in log order. A held input the
+// ticks never name again (a repeat of an operator request already named) is not delivered: it changed nothing.
 #pragma once
 
 #include <cstddef>

@@ -84,6 +84,7 @@ TEST_F(FlightServiceClock, ASetpointOnlyWhenTheTimerFiresStampedWithTheNodesTime
   EXPECT_EQ(got[0].utime, kT0 + 10 * kMs);
   EXPECT_EQ(got[0].latest_command_seq, 7);
   EXPECT_EQ(got[0].track_utime, kT0);
+  EXPECT_EQ(got[0].control_utime, kT0);  // the ENGAGE it had
   EXPECT_TRUE(got[0].engaged);
   EXPECT_EQ(got[0].reasons, 0) << got[0].reasons;
 }
