@@ -62,6 +62,7 @@ struct HandResult {
   int armless_dropped = 0;       //!< Alg. 1 candidates dropped: no arm from the shoulder to them
   int upright_dropped = 0;       //!< Alg. 2 candidates dropped: a forearm hanging at the torso's edge
   bool front_out_of_view = false;  //!< Alg. 2 found a hand but the body centre is out of the image: not judged
+  bool colourless = false;         //!< the frame has no colour (HandObserver, colour_check.hpp): nothing learnt or looked for
 };
 
 class HandDetector {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hands/colour_check.hpp"
+
 namespace gpilot {
 
 HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior, const BodyProportions& body)
@@ -22,6 +24,12 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
   const HandsParams& p = detector_.params();
   const bool face = user.face && user.face->width >= 1 && user.face->height >= 1;
   const cv::Rect2f box = face && p.box_from_face ? cv::Rect2f(body_from_face(*user.face, body_)) : user.box;
+  if (!has_colour(bgr, p.skin)) {  // a grey frame teaches the models nothing and can show no skin
+    HandResult none;
+    none.geometry = hand_geometry(p, box, bgr.size());
+    none.colourless = true;
+    return none;
+  }
   if (face) adapter_.learn_user(bgr, *user.face);
   const HandGeometry g = hand_geometry(p, box, bgr.size());
   if (g.valid) {

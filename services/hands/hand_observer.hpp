@@ -38,7 +38,8 @@ class HandObserver {
   HandObserver(const HandsParams& params, const SkinModel& prior, const BodyProportions& body = {});
 
   // Learns from this frame (user skin from the face, the scene outside the search rectangle), then detects on
-  // the user box (or the box the face implies, hands.box_from_face). bgr: CV_8UC3.
+  // the user box (or the box the face implies, hands.box_from_face). bgr: CV_8UC3. A frame without colour
+  // (hands.skin.min_colour_fraction) gives NONE with `colourless` set, and nothing is learnt from it.
   HandResult observe(const cv::Mat& bgr, const UserView& user);
   // Forgets the user and the scene (the trained table alone again).
   void reset();

@@ -64,6 +64,11 @@ struct SkinParams {
   // the thin edges and specks a textured background leaves, which Alg. 1 would otherwise count outside the box.
   // r = round(open_radius_ratio x user box width): 2 px for an 85 px box, so a hand (w/4 wide) survives it.
   double open_radius_ratio = 0.025;  //!< opening radius / box width (0 = off)
+  // Ours: a frame without colour (a monochrome or IR camera, a greyscale video) cannot show skin; the stage refuses
+  // it with that reason (colour_check.hpp). Greyscale JPEGs have chroma 0-2; the palest colour photo of the real
+  // development set has 9 % of its pixels at HSV saturation > 40.
+  double min_colour_fraction = 0.005;  //!< a frame with fewer sampled pixels of min_chroma is colourless (0 = off)
+  int min_chroma = 12;                 //!< max(B,G,R) - min(B,G,R) of a pixel that has colour
   SkinAdaptParams adapt;
 
   template <class V>
@@ -71,6 +76,8 @@ struct SkinParams {
     v("model", model, "skin model file from gpilot-skin-train (relative paths: from the project root)");
     v("threshold", threshold, 0.0, 1.0, "P(skin|colour) above this is skin");
     v("open_radius_ratio", open_radius_ratio, 0.0, 0.25, "skin mask opening radius / box width (0 = off; ours, not the paper's)");
+    v("min_colour_fraction", min_colour_fraction, 0.0, 1.0, "frames with fewer sampled pixels of min_chroma are refused: no colour, no skin (0 = off; ours)");
+    v("min_chroma", min_chroma, 1, 255, "max(B,G,R) - min(B,G,R) of a pixel that has colour");
     v.group("adapt", adapt);
   }
 };

@@ -30,8 +30,9 @@ void copy_rect(float* out, const cv::Rect& r) {
   out[3] = static_cast<float>(r.height);
 }
 
-hand_obs_t observe(HandObserver& observer, const image_t& frame, const user_track_t& track, const cv::Mat& bgr) {
-  hand_obs_t obs{};
+// The stage's observation of one pair; false when the frame has no colour (nothing to publish).
+bool observe(HandObserver& observer, const image_t& frame, const user_track_t& track, const cv::Mat& bgr, hand_obs_t& obs) {
+  obs = hand_obs_t{};
   obs.utime = frame.utime;
   obs.seq = frame.seq;
   obs.track_id = track.track_id;
@@ -46,9 +47,10 @@ hand_obs_t observe(HandObserver& observer, const image_t& frame, const user_trac
     user.face = cv::Rect2f(track.face_box[0], track.face_box[1], track.face_box[2], track.face_box[3]);
   user.track_id = track.track_id;
   HandResult r;
-  if (track.status == user_track_t::STATUS_TRACKING)
+  if (track.status == user_track_t::STATUS_TRACKING) {
     r = observer.observe(bgr, user);
-  else
+    if (r.colourless) return false;
+  } else
     r.geometry = hand_geometry(observer.params(), user.box, bgr.size());
   const SkinAdaptation a = observer.adaptation();
   obs.skin_user_samples = a.user_samples;
@@ -65,7 +67,7 @@ hand_obs_t observe(HandObserver& observer, const image_t& frame, const user_trac
   obs.hand_skin = r.hand_skin;
   obs.skin_outside = r.skin_outside;
   obs.skin_inside = r.skin_inside;
-  return obs;
+  return true;
 }
 
 }  // namespace
@@ -80,7 +82,10 @@ std::string hands_on_pair(HandObserver& observer, const image_t& frame, const us
     return "USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) + "x" +
            std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
            std::to_string(bgr.rows);
-  obs = observe(observer, frame, track, bgr);
+  if (!observe(observer, frame, track, bgr, obs))
+    return "CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, the frame has none (a monochrome or "
+           "infrared camera, or a greyscale video?): fewer than hands.skin.min_colour_fraction of its pixels differ "
+           "in B, G, R by hands.skin.min_chroma";
   return "";
 }
 

@@ -99,7 +99,7 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
         result = observer.observe(bgr, *view.view);
         score = score_person(truth, *result);
         board.add_run(truth, *result, *score);
-        row.status = "run";
+        row.status = result->colourless ? "colourless" : "run";
         row.box = view.view->box;
         row.result = &*result;
         row.score = &*score;

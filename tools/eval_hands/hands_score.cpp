@@ -83,6 +83,7 @@ void HandsScoreboard::add_truth(const PersonKeypointTruth& t) {
 void HandsScoreboard::add_run(const PersonKeypointTruth& t, const HandResult& r, const PersonScore& s) {
   ++run_;
   ++run_by_truth_[static_cast<int>(t.person)];
+  colourless_[static_cast<int>(t.person)] += r.colourless;
   if (!s.scored) return;
   ++scored_;
   ++confusion_[static_cast<int>(s.expected)][static_cast<int>(r.kind)];
@@ -99,12 +100,14 @@ double HandsScoreboard::kind_accuracy() const { return ratio(kind_right_, scored
 nlohmann::json HandsScoreboard::to_json(const nlohmann::json& context) const {
   using nlohmann::json;
   json j = context;
-  json by_truth = json::object(), run_truth = json::object(), no_face = json::object(), arms = json::object();
+  json by_truth = json::object(), run_truth = json::object(), no_face = json::object(), arms = json::object(),
+       colourless = json::object();
   for (int k = 0; k < kPersonTruths; ++k) {
     const char* n = person_truth_name(static_cast<PersonTruth>(k));
     by_truth[n] = persons_[k];
     run_truth[n] = run_by_truth_[k];
     no_face[n] = no_face_[k];
+    colourless[n] = colourless_[k];
   }
   for (int k = 0; k < kArmTruths; ++k) arms[arm_truth_name(static_cast<ArmTruth>(k))] = arms_[k];
   int64_t usable = 0, no_face_total = 0;
@@ -123,6 +126,7 @@ nlohmann::json HandsScoreboard::to_json(const nlohmann::json& context) const {
   j["no_face_by_truth"] = no_face;
   j["persons_run"] = run_;
   j["persons_run_by_truth"] = run_truth;
+  j["colourless_by_truth"] = colourless;  // run, refused by the stage (no colour in the photo), scored as NONE
   j["ambiguous_not_scored"] = run_by_truth_[static_cast<int>(PersonTruth::Ambiguous)];
   j["persons_scored"] = scored_;
   json counts = json::array();
@@ -174,9 +178,13 @@ void HandsScoreboard::print_table(std::FILE* out, const std::string& title) cons
       std::fprintf(out, "%s%s %lld", k ? ", " : "", person_truth_name(static_cast<PersonTruth>(k)), static_cast<long long>(no_face_[k]));
     std::fprintf(out, ")");
   }
-  std::fprintf(out, "\nstage run on                %lld persons; AMBIGUOUS (not scored) %lld; scored %lld\n\n",
+  std::fprintf(out, "\nstage run on                %lld persons; AMBIGUOUS (not scored) %lld; scored %lld\n",
                static_cast<long long>(run_), static_cast<long long>(run_by_truth_[static_cast<int>(PersonTruth::Ambiguous)]),
                static_cast<long long>(scored_));
+  std::fprintf(out, "in photos without colour    ");
+  for (int k = 0; k < kPersonTruths; ++k)
+    std::fprintf(out, "%s%s %lld", k ? ", " : "", person_truth_name(static_cast<PersonTruth>(k)), static_cast<long long>(colourless_[k]));
+  std::fprintf(out, " (the stage refuses them: no skin colour; scored as NONE)\n\n");
   std::fprintf(out, "confusion (rows truth as expected kind, columns stage kind)\n%8s %8s %8s %8s\n", "", "NONE", "OUT", "FRONT");
   const char* rows[3] = {"REST", "OUT", "FRONT"};
   for (int k = 0; k < 3; ++k)

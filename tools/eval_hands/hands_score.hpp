@@ -54,7 +54,7 @@ class HandsScoreboard {
   void add_truth(const PersonKeypointTruth& truth);
   void add_no_face(PersonTruth t) { ++no_face_[static_cast<int>(t)]; }
   void add_face_found() { ++faces_found_; }
-  // A person the stage ran on.
+  // A person the stage ran on (a colourless photo counts as run: the stage's NONE is scored).
   void add_run(const PersonKeypointTruth& truth, const HandResult& result, const PersonScore& score);
 
   int64_t read() const { return read_; }
@@ -67,7 +67,7 @@ class HandsScoreboard {
 
  private:
   int64_t read_ = 0, skipped_not_visible_ = 0, image_unreadable_ = 0, run_ = 0, scored_ = 0, faces_found_ = 0;
-  std::array<int64_t, kPersonTruths> persons_{}, no_face_{}, run_by_truth_{};
+  std::array<int64_t, kPersonTruths> persons_{}, no_face_{}, run_by_truth_{}, colourless_{};
   std::array<int64_t, kArmTruths> arms_{};
   int64_t confusion_[3][3] = {};  //!< [expected][stage], order NONE, OUT, FRONT
   int64_t out_found_ = 0, front_found_ = 0, front_hl_right_ = 0, false_hand_ = 0, kind_right_ = 0;
