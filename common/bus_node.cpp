@@ -161,7 +161,8 @@ void BusNode::run_timers_at(int64_t utime) {
 void BusNode::set_state(int8_t health_state, const std::string& detail) { stats_.set_state(health_state, detail); }
 
 void BusNode::publish_health() {
-  const health_t h = stats_.report(now(), name_, static_cast<int32_t>(getpid()));
+  health_t h = stats_.report(now(), name_, static_cast<int32_t>(getpid()));
+  h.cpu_s = process_cpu_seconds();
   send("HEALTH", h);
 }
 

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <thread>
 
+#include <time.h>
+
 namespace gpilot {
 
 constexpr int64_t kMicrosPerSecond = 1000000;
@@ -25,6 +27,14 @@ inline int64_t monotonic_utime() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
+}
+
+// CPU time this process has used (user + system, every thread), seconds: what HEALTH reports, so a run's
+// summary can say what each process costs per camera frame.
+inline double process_cpu_seconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return 0.0;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // Sleeps to fixed ticks of a steady clock; a late tick does not shift the ones after it.

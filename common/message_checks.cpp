@@ -16,6 +16,10 @@ struct Finite {
     return *this;
   }
   Finite& operator()(const char* name, float v) { return (*this)(name, &v, 1); }
+  Finite& operator()(const char* name, double v) {
+    if (reason.empty() && !std::isfinite(v)) reason = std::string(name) + " is not finite";
+    return *this;
+  }
 };
 
 std::string check_enum(const char* name, int value, int lo, int hi) {
@@ -204,8 +208,9 @@ std::string check_message(const ground_truth_t& m) {
 std::string check_message(const health_t& m) {
   return first({check_enum("state", m.state, health_t::STATE_STARTING, health_t::STATE_STOPPING),
                 Finite()("rate_in_hz", m.rate_in_hz)("rate_out_hz", m.rate_out_hz)(
-                    "processing_ms_p50", m.processing_ms_p50)("processing_ms_p99", m.processing_ms_p99)
-                    .reason});
+                    "processing_ms_p50", m.processing_ms_p50)("processing_ms_p99", m.processing_ms_p99)("cpu_s", m.cpu_s)
+                    .reason,
+                m.cpu_s < 0 ? "cpu_s " + number(m.cpu_s) + " is negative" : ""});
 }
 
 std::string check_message(const config_t& m) {

@@ -61,11 +61,11 @@ const std::vector<WirePart>& wire_layout<tracker_init_t>() {
   return l;
 }
 // int64 utime, int64 seq, string name, int32 pid, int8 state, string state_detail, int64 messages_in,
-// messages_out, rejected, dropped, string last_reject_reason, float rate_in_hz, rate_out_hz, p50, p99
+// messages_out, rejected, dropped, string last_reject_reason, float rate_in_hz, rate_out_hz, p50, p99, double cpu_s
 template <>
 const std::vector<WirePart>& wire_layout<health_t>() {
   static const std::vector<WirePart> l{{P::kBytes, 16}, {P::kString}, {P::kBytes, 5}, {P::kString},
-                                       {P::kBytes, 32}, {P::kString},  {P::kBytes, 16}};
+                                       {P::kBytes, 32}, {P::kString},  {P::kBytes, 24}};
   return l;
 }
 // int64 utime, int64 seq, int32 width, height, row_stride, int8 pixel_format, int32 size, byte data[size]

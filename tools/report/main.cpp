@@ -1,6 +1,7 @@
 // gpilot-report: a run's numbers and pictures from its LCM log. Reads CAMERA, USER_TRACK, GESTURE_CMD,
 // FLIGHT_SETPOINT, VEHICLE_STATE, GROUND_TRUTH and HEALTH from the log (no bus). Writes DIR/summary.json and
 // DIR/trajectory.png, prints a table (or, with --json, the summary JSON) on stdout, progress on stderr.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -27,7 +28,12 @@ int report(const std::string& log_path, const std::string& out_dir, bool print_j
   const Summary& s = a.summary;
   // Indented, one member a line: summary.json is read by people and by deploy/run's line-wise sed (logger_lost);
   // --json prints the same text.
+  // The log's cost on disk, per minute of camera frames (0 without frames).
+  const double log_mb = static_cast<double>(std::filesystem::file_size(log_path)) * 1e-6;
+  const double log_mb_per_min = s.duration_s > 0 ? std::round(log_mb / (s.duration_s / 60.0) * 10) / 10 : 0.0;
   const std::string j = summary_json(s, {{"log", log_path},
+                                         {"log_mb", std::round(log_mb * 10) / 10},
+                                         {"log_mb_per_minute", log_mb_per_min},
                                          {"log_events", a.events},
                                          {"buffer_size", buffer_size},
                                          {"rejected_messages", a.rejected},

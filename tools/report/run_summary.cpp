@@ -199,6 +199,22 @@ Summary RunAnalyzer::summary() const {
         h.processing_p99_max_ms = std::max<double>(h.processing_p99_max_ms, r.processing_ms_p99);
       }
     }
+    // CPU: a restart (a new pid) starts from zero again, so each pid's reports are a window of their own.
+    double cpu_s = 0, wall_s = 0;
+    int64_t window_frames = 0;
+    for (size_t i = 0; i < reports.size();) {
+      size_t j = i;
+      while (j + 1 < reports.size() && reports[j + 1].pid == reports[i].pid) ++j;
+      if (j > i && reports[j].cpu_s >= reports[i].cpu_s) {
+        cpu_s += reports[j].cpu_s - reports[i].cpu_s;
+        wall_s += (reports[j].utime - reports[i].utime) * 1e-6;
+        for (const auto& [seq, f] : frames_by_seq_)
+          window_frames += f.recv >= reports[i].utime && f.recv <= reports[j].utime;
+      }
+      i = j + 1;
+    }
+    if (window_frames > 0) h.cpu_ms_per_frame = 1e3 * cpu_s / static_cast<double>(window_frames);
+    if (wall_s > 0) h.cpu_percent = 100 * cpu_s / wall_s;
     const health_t& last = reports.back();
     h.rate_out_last_hz = last.rate_out_hz;
     h.rate_out_median_hz = median_of(rates);
@@ -303,6 +319,8 @@ json summary_json(const Summary& s, const json& extra) {
                       {"processing_ms_p50", sig6(h.processing_p50_ms)},
                       {"processing_ms_p99", sig6(h.processing_p99_ms)},
                       {"processing_ms_p99_max", sig6(h.processing_p99_max_ms)},
+                      {"cpu_ms_per_frame", sig6(h.cpu_ms_per_frame)},
+                      {"cpu_percent", sig6(h.cpu_percent)},
                       {"messages_in", h.messages_in},
                       {"messages_out", h.messages_out},
                       {"rejected", h.rejected},
@@ -421,11 +439,11 @@ std::string summary_table(const Summary& s) {
   lat("frame utime -> FLIGHT_SETPOINT", s.latency_setpoint);
   lat("CAMERA receipt -> GESTURE_CMD", s.pipeline_cmd);
   lat("CAMERA receipt -> FLIGHT_SETPOINT", s.pipeline_setpoint);
-  line("\n%-18s %7s %9s %9s %9s %9s %9s %9s %8s\n", "stage", "reports", "Hz last", "Hz med", "p50 ms", "p99 ms",
-       "rejected", "dropped", "state");
+  line("\n%-18s %7s %9s %9s %9s %9s %11s %9s %9s %8s\n", "stage", "reports", "Hz last", "Hz med", "p50 ms", "p99 ms",
+       "CPU ms/frm", "rejected", "dropped", "state");
   for (const auto& h : s.stages)
-    line("%-18s %7lld %9.1f %9.1f %9.2f %9.2f %9lld %9lld %8s\n", h.name.c_str(), static_cast<long long>(h.reports),
-         h.rate_out_last_hz, h.rate_out_median_hz, h.processing_p50_ms, h.processing_p99_ms,
+    line("%-18s %7lld %9.1f %9.1f %9.2f %9.2f %11.3f %9lld %9lld %8s\n", h.name.c_str(), static_cast<long long>(h.reports),
+         h.rate_out_last_hz, h.rate_out_median_hz, h.processing_p50_ms, h.processing_p99_ms, h.cpu_ms_per_frame,
          static_cast<long long>(h.rejected), static_cast<long long>(h.dropped), health_state_name(h.last_state));
   line("\nnot in the log     %lld lost by the logger;", static_cast<long long>(s.logger_lost()));
   for (const auto& [channel, g] : s.gaps)

@@ -41,6 +41,10 @@ struct StageHealth {
   double processing_p99_ms = 0;      // median over reports of the period's p99
   double processing_p99_max_ms = 0;  // worst period
   int64_t messages_in = 0, messages_out = 0, rejected = 0, dropped = 0;  // last report
+  // CPU (HEALTH.cpu_s) used between a process's first and last report (summed over restarts), per CAMERA frame
+  // received in those windows and as a share of one core; -1 when the reports carry none (one report, no frames).
+  double cpu_ms_per_frame = -1;
+  double cpu_percent = -1;
   int last_state = 0;
   std::string last_reject_reason;
 };

@@ -76,6 +76,14 @@ TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
   EXPECT_EQ(check_message(t), "manual box has no area");
   t.command = tracker_init_t::COMMAND_RESET;
   EXPECT_EQ(check_message(t), "");
+
+  health_t hl{};
+  hl.cpu_s = 12.5;
+  EXPECT_EQ(check_message(hl), "");
+  hl.cpu_s = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(check_message(hl), "cpu_s is not finite");
+  hl.cpu_s = -1;
+  EXPECT_EQ(check_message(hl), "cpu_s -1 is negative");
 }
 
 TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {

@@ -64,6 +64,10 @@ TEST_F(RunSummaryTest, StageRatesAndProcessingTimesFromHealth) {
   EXPECT_FLOAT_EQ(h.processing_p50_ms, 3.0);    // p50s 2, 3, 4, 5: nearest-rank median 3
   EXPECT_FLOAT_EQ(h.processing_p99_ms, 11.0);   // p99s 10..13
   EXPECT_FLOAT_EQ(h.processing_p99_max_ms, 13.0);
+  // CPU 0.5 s at the first report (after frame 24) and 0.68 s at the last (after frame 99): 180 ms over the 75
+  // frames received between them (25..99), in 75 x 40 ms = 3 s
+  EXPECT_NEAR(h.cpu_ms_per_frame, 2.4, 1e-9);
+  EXPECT_NEAR(h.cpu_percent, 6.0, 1e-9);
 }
 
 TEST_F(RunSummaryTest, AccuracySkipsTheSettlingFramesAfterEachChange) {

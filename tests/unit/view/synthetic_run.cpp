@@ -164,6 +164,7 @@ health_t health_of(const std::string& name, int64_t i, int64_t utime) {
   h.rate_in_hz = h.rate_out_hz = i == 0 ? 0.0f : 24.0f + static_cast<float>((i - 1) % 3);
   h.processing_ms_p50 = 2.0f + static_cast<float>(i);
   h.processing_ms_p99 = 10.0f + static_cast<float>(i);
+  h.cpu_s = 0.5 + 0.06 * static_cast<double>(i);  // 60 ms of CPU each report period (25 frames)
   return h;
 }
 
