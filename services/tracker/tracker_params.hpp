@@ -229,6 +229,12 @@ struct TrackerParams {
   // and the drone followed them (scenario bystander). 0: off (manual tracks and grey frames have no torso
   // colours: never gated).
   double recheck_min_torso_match = 0.5;
+  // A re-check that finds a face in other clothes where the box puts the face makes the track LOST (the box
+  // is on someone else, or they stand in front of the user); on a frame whose PSR is below weak_recheck_psr such
+  // a track is re-checked already after weak_recheck_frames: a look-alike walking in front took the filter with
+  // them within 6 frames at PSR 8..9 (it still learns from 6), before the next second's re-check.
+  int weak_recheck_frames = 3;
+  double weak_recheck_psr = 12.0;
   double torso_colour_rate = 0.2;
   int torso_colour_bins = 8;
   double torso_dark_level = 20.0;
@@ -256,6 +262,8 @@ struct TrackerParams {
     v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");
     v("face_miss_psr", face_miss_psr, 0.0, 1000.0, "a re-check miss counts only when the frame's PSR is below this");
     v("recheck_min_torso_match", recheck_min_torso_match, 0.0, 1.0, "re-check: a face whose torso colours match the track's less is not the user's (0: off)");
+    v("weak_recheck_frames", weak_recheck_frames, 1, 100000, "a track that knows the user's clothes is re-checked this often while PSR < weak_recheck_psr, frames");
+    v("weak_recheck_psr", weak_recheck_psr, 0.0, 1000.0, "PSR below which such a track is re-checked every weak_recheck_frames (0: never early)");
     v("torso_colour_rate", torso_colour_rate, 0.0, 1.0, "blend rate of the track's torso colours at each matching re-check");
     v("torso_colour_bins", torso_colour_bins, 2, 64, "torso colours: chromaticity bins per axis");
     v("torso_dark_level", torso_dark_level, 0.0, 255.0, "torso colours: pixels with a mean level below this are not read");

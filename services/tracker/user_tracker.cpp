@@ -89,7 +89,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
     ++other_faces_;
-    return FaceCheck::Missed;
+    return FaceCheck::Other;
   }
   if (scale > std::log1p(p_.face_recheck_tolerance) ||
       std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width)
@@ -181,10 +181,21 @@ void UserTracker::track_frame(const cv::Mat& frame) {
   // Re-detection starts from the last estimate the filter was sure of (a frame above lost_psr can still be
   // one of an occluder's, drifting).
   if (e.psr >= p_.redetect_psr) last_good_estimate_ = dsst_.estimate();
-  if (p_.face_recheck_frames > 0 && ++frames_since_face_ >= p_.face_recheck_frames) {
+  // A weak frame of a track that knows the user's clothes is re-checked early (someone may be passing in front:
+  // the filter, still learning above learn_psr, follows them off within a few frames).
+  const bool weak = e.psr < p_.weak_recheck_psr && !torso_colours_.empty() && p_.recheck_min_torso_match > 0;
+  ++frames_since_face_;
+  if (p_.face_recheck_frames > 0 &&
+      (frames_since_face_ >= p_.face_recheck_frames || (weak && frames_since_face_ >= p_.weak_recheck_frames))) {
     // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
     // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
     const FaceCheck check = recheck_face(frame);
+    if (check == FaceCheck::Other) {
+      // Where the box puts the face there is someone else's (other clothes): the box is on them, or they
+      // are in front of the user. Not flown on; the search (which refuses them while LOST) finds the user.
+      lose(false);
+      return;
+    }
     if (check == FaceCheck::Found || (check == FaceCheck::Missed && e.psr >= p_.face_miss_psr)) face_misses_ = 0;
     if (check == FaceCheck::Missed && e.psr < p_.face_miss_psr) ++face_misses_;
     if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses)

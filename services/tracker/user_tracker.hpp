@@ -70,7 +70,7 @@ class UserTracker {
   void track_frame(const cv::Mat& frame);
   void lost_frame(const cv::Mat& frame);
   void lose(bool model_trusted);
-  enum class FaceCheck { Found, Missed, OutOfView };
+  enum class FaceCheck { Found, Missed, OutOfView, Other };  // Other: a face in other clothes than the user's
   FaceCheck recheck_face(const cv::Mat& frame);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
