@@ -35,6 +35,7 @@
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/health_t.hpp"
+#include "gpilot/user_track_t.hpp"
 #include "gpilot/vehicle_state_t.hpp"
 
 namespace fs = std::filesystem;
@@ -50,6 +51,7 @@ struct Recorded {
   std::vector<Truth> truth;
   std::vector<Setpoint> setpoints;
   std::map<int64_t, ScoredCommand> commands;  // GESTURE_CMD by seq
+  std::map<int64_t, user_track_t> tracks;     // USER_TRACK by seq
   std::map<std::string, std::vector<std::pair<int64_t, int32_t>>> health_pids;  // name -> (t, pid)
 };
 
@@ -76,6 +78,9 @@ Recorded read_log(const std::string& path) {
     } else if (ch == "GESTURE_CMD") {
       gesture_cmd_t m{};
       if (m.decode(ev->data, 0, ev->datalen) > 0) r.commands[m.seq] = {m.mode, {m.direction[0], m.direction[1]}};
+    } else if (ch == "USER_TRACK") {
+      user_track_t m{};
+      if (m.decode(ev->data, 0, ev->datalen) > 0) r.tracks[m.seq] = m;
     } else if (ch == "HEALTH") {
       health_t m{};
       if (m.decode(ev->data, 0, ev->datalen) > 0) r.health_pids[m.name].push_back({ev->timestamp, m.pid});
@@ -293,14 +298,56 @@ Judged judge_gestures(const Recorded& r, double rest_drift_m) {
   return j;
 }
 
+// The track against the truth (issue 13): of the frames TRACKING with the user in view (true box centre in the
+// image), the share whose box has IoU >= 0.5 with the user's true box (the drone flies after whoever is tracked).
+double share_on_user(const Recorded& r) {
+  int64_t tracking = 0, on = 0;
+  for (const auto& f : r.truth) {
+    const auto t = r.tracks.find(f.m.seq);
+    if (t == r.tracks.end() || t->second.status != user_track_t::STATUS_TRACKING) continue;
+    const float* b = f.m.user_box;
+    const double cx = b[0] + 0.5 * b[2], cy = b[1] + 0.5 * b[3];
+    if (!(b[2] > 0) || cx < 0 || cy < 0 || cx >= t->second.image_width || cy >= t->second.image_height) continue;
+    const float* a = t->second.box;
+    const double iw = std::max(0.0, std::min<double>(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]));
+    const double ih = std::max(0.0, std::min<double>(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]));
+    const double inter = iw * ih, uni = static_cast<double>(a[2]) * a[3] + static_cast<double>(b[2]) * b[3] - inter;
+    ++tracking;
+    on += uni > 0 && inter / uni >= 0.5;
+  }
+  return tracking ? static_cast<double>(on) / static_cast<double>(tracking) : 0.0;
+}
+
+// GESTURE_CMD's mode against the truth's expected mode on the frames with the drone 8 to 10 m from the user
+// (horizontal), from 31 frames after each change of the expected mode (gpilot-report's settling, buffer 60):
+// the paper's range. Returns {judged frames, share right}.
+std::pair<int64_t, double> accuracy_at_8_to_10_m(const Recorded& r) {
+  int64_t judged = 0, right = 0, since_change = 0;
+  int prev = -1;
+  for (const auto& f : r.truth) {
+    since_change = f.m.expected_mode == prev ? since_change + 1 : 0;
+    prev = f.m.expected_mode;
+    const double range = std::hypot(f.m.person_position[0] - f.m.camera_position[0], f.m.person_position[1] - f.m.camera_position[1]);
+    const auto c = r.commands.find(f.m.seq);
+    if (since_change < 31 || range < 8.0 || range >= 10.0 || c == r.commands.end()) continue;
+    ++judged;
+    right += c->second.mode == f.m.expected_mode;
+  }
+  return {judged, judged ? static_cast<double>(right) / static_cast<double>(judged) : 0.0};
+}
+
 // max_false_at_rest and rest_drift_m: 0 and 0.10 m; a scenario that does not meet them yet says why it is
-// allowed more (an open finding, issue 14), so that the rest of it still guards every run.
+// allowed more (an open finding, issue 14), so that the rest of it still guards every run. min_on_user: the
+// share of TRACKING frames on the user (share_on_user; 0: not judged); min_far_accuracy: decided right at
+// 8-10 m (accuracy_at_8_to_10_m, at least 200 frames judged; 0: not judged).
 struct Scenario {
   std::string name;
   double duration_s;
   std::vector<int> must_judge;
   int max_false_at_rest = 0;
   double rest_drift_m = 0.10;
+  double min_on_user = 0.0;
+  double min_far_accuracy = 0.0;
 };
 
 class ScenarioE2E : public ::testing::TestWithParam<Scenario> {};
@@ -334,6 +381,17 @@ TEST_P(ScenarioE2E, TrajectoryDoesWhatTheGesturesAsk) {
                flown.reaction_median_s(), flown.reaction_max_s(), flown.false_at_rest,
                static_cast<long long>(flown.false_at_rest_frames), flown.confused, static_cast<long long>(flown.confused_frames));
   EXPECT_LE(flown.false_at_rest, sc.max_false_at_rest) << "the drone was asked to move while the user rested";
+  const double on_user = share_on_user(r);
+  const auto [far_judged, far_right] = accuracy_at_8_to_10_m(r);
+  std::fprintf(stderr, "track on the user on %.1f %% of TRACKING frames; at 8-10 m %lld frames judged, %.1f %% right\n",
+               100.0 * on_user, static_cast<long long>(far_judged), 100.0 * far_right);
+  if (sc.min_on_user > 0) {
+    EXPECT_GE(on_user, sc.min_on_user) << "the track left the user (a bystander?)";
+  }
+  if (sc.min_far_accuracy > 0) {
+    EXPECT_GE(far_judged, 200) << "too little flown at 8-10 m";
+    EXPECT_GE(far_right, sc.min_far_accuracy) << "gestures at 8-10 m decided wrong";
+  }
   if (!given) {
     // The live run replays: each stage's code over what it received, with the config it published on CONFIG,
     // gives exactly what it sent (as ./deploy/run checks after a flight). Flight too: its service with its
@@ -364,7 +422,13 @@ INSTANTIATE_TEST_SUITE_P(
         // below the frame) is gone, and half the DOWN at 52-54 s on a yellow wall at the bottom edge
         // (hands.needs_body_centre). Left: that wall just above the border, read as an OUT hand (DOWN, 53.6 s).
         Scenario{"nuisances", 70, {G::GESTURE_REST, G::GESTURE_OUT}, 2, 0.20},
-        Scenario{"dark-skin", 70, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}}),
+        Scenario{"dark-skin", 70, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}},
+        // Issue 13, the paper's range: from 5 m out to 8-10 m with FURTHER, every gesture there (>= 90 % right).
+        Scenario{"far", 76, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}, 0, 0.10, 0.95, 0.90},
+        // Issue 13, the user, not a bystander: the track stays on the user through a look-alike walker crossing in
+        // front and beside a waver. Open finding (hands, issue 13): the waver's raised hand inside the user's
+        // search rectangle reached GESTURE_CMD as FINE in a few short episodes while the user rested.
+        Scenario{"bystander", 72, {G::GESTURE_REST, G::GESTURE_OUT}, 4, 0.10, 0.95}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');
