@@ -1,5 +1,6 @@
 #include "bus_node.hpp"
 #include "log.hpp"
+#include "process_channels.hpp"
 
 #include <atomic>
 #include <csignal>
@@ -163,7 +164,7 @@ void BusNode::set_state(int8_t health_state, const std::string& detail) { stats_
 void BusNode::publish_health() {
   health_t h = stats_.report(now(), name_, static_cast<int32_t>(getpid()));
   h.cpu_s = process_cpu_seconds();
-  send("HEALTH", h);
+  send(process_channels::kHealth.name, h);
 }
 
 void BusNode::run_due_timers() {

@@ -10,16 +10,14 @@ namespace {
 // The first non-finite value among named float fields, as a reason; "" if all are finite.
 struct Finite {
   std::string reason;
-  Finite& operator()(const char* name, const float* v, int n) {
+  template <class T>
+  Finite& operator()(const char* name, const T* v, int n) {
     for (int i = 0; reason.empty() && i < n; ++i)
       if (!std::isfinite(v[i])) reason = std::string(name) + " is not finite";
     return *this;
   }
   Finite& operator()(const char* name, float v) { return (*this)(name, &v, 1); }
-  Finite& operator()(const char* name, double v) {
-    if (reason.empty() && !std::isfinite(v)) reason = std::string(name) + " is not finite";
-    return *this;
-  }
+  Finite& operator()(const char* name, double v) { return (*this)(name, &v, 1); }
 };
 
 std::string check_enum(const char* name, int value, int lo, int hi) {

@@ -11,12 +11,6 @@
 
 namespace gpilot {
 
-double iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double inter = (a & b).area();
-  const double uni = a.area() + b.area() - inter;
-  return uni > 0 ? inter / uni : 0.0;
-}
-
 double centre_error(const cv::Rect2d& a, const cv::Rect2d& b) {
   if (a.area() <= 0) return std::numeric_limits<double>::infinity();
   return std::hypot(a.x + a.width / 2 - b.x - b.width / 2, a.y + a.height / 2 - b.y - b.height / 2);

@@ -8,9 +8,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "box_iou.hpp"
+
 namespace gpilot {
 
-double iou(const cv::Rect2d& a, const cv::Rect2d& b);
 double centre_error(const cv::Rect2d& a, const cv::Rect2d& b);
 
 struct TrackScores {

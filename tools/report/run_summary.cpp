@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "box_iou.hpp"
 #include "overlay.hpp"
 #include "stage_stats.hpp"
 
@@ -54,15 +55,6 @@ json latency_json(const LatencyStats& l) {
 }
 
 }  // namespace
-
-double box_iou(const float a[4], const float b[4]) {
-  if (!(a[2] > 0 && a[3] > 0 && b[2] > 0 && b[3] > 0)) return 0.0;
-  const double x0 = std::max(a[0], b[0]), y0 = std::max(a[1], b[1]);
-  const double x1 = std::min(a[0] + a[2], b[0] + b[2]), y1 = std::min(a[1] + a[3], b[1] + b[3]);
-  const double inter = std::max(0.0, x1 - x0) * std::max(0.0, y1 - y0);
-  const double uni = static_cast<double>(a[2]) * a[3] + static_cast<double>(b[2]) * b[3] - inter;
-  return uni > 0 ? inter / uni : 0.0;
-}
 
 void TrackVsTruth::add(int status, double iou) {
   ++frames;
@@ -252,9 +244,10 @@ Summary RunAnalyzer::summary() const {
     if (tr == track_box_by_seq_.end() || !(truth.box[2] > 0 && truth.box[3] > 0)) continue;
     const double cx = truth.box[0] + 0.5 * truth.box[2], cy = truth.box[1] + 0.5 * truth.box[3];
     if (cx < 0 || cy < 0 || cx >= tr->second.width || cy >= tr->second.height) continue;  // the user is out of view
-    const double iou = box_iou(tr->second.box.data(), truth.box.data());
-    s.track_vs_truth.add(tr->second.status, iou);
-    if (band) band->track.add(tr->second.status, iou);
+    const auto& t = tr->second.box;
+    const double v = iou(cv::Rect2d(t[0], t[1], t[2], t[3]), cv::Rect2d(truth.box[0], truth.box[1], truth.box[2], truth.box[3]));
+    s.track_vs_truth.add(tr->second.status, v);
+    if (band) band->track.add(tr->second.status, v);
   }
   int prev = -1;
   int64_t change_seq = 0;

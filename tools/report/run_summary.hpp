@@ -135,9 +135,6 @@ struct TrajectoryPoint {
 // The band edges of Summary::range_bands, metres: [0, 3) [3, 5) [5, 8) [8, 10) [10, inf).
 inline const std::vector<double> kRangeBandEdges = {0.0, 3.0, 5.0, 8.0, 10.0};
 
-// Intersection over union of two boxes (x, y, w, h); 0 when either is empty.
-double box_iou(const float a[4], const float b[4]);
-
 class RunAnalyzer {
  public:
   // buffer_size: decide.buffer_size; the accuracy skips buffer_size / 2 + 1 frames after each change.
