@@ -104,10 +104,11 @@ std::vector<FaceDetection> FaceDetector::sorted_of(std::vector<cv::Rect> faces, 
 // any larger): the cascade's cost per searched pixel is about the same in every octave, so the tiles' pixels
 // are the budget. A tile overlaps its neighbours by the largest face it looks for, so every face of its
 // octave lies wholly in one tile.
-void FaceDetector::plan_scan(cv::Size size) {
-  jobs_.clear();
-  jobs_for_ = size;
-  next_job_ = 0;
+void FaceDetector::plan_scan(cv::Size size, Scan& scan) const {
+  std::vector<ScanJob>& jobs = scan.jobs;
+  jobs.clear();
+  scan.planned_for = size;
+  scan.next = 0;
   const int min_px = p_.face.min_face_px;
   const double k0 = std::max({1.0, p_.face.downscale, std::sqrt(size.area() / std::max(1.0, p_.face.max_search_pixels))});
   std::vector<ScanJob> octave_jobs;
@@ -133,7 +134,7 @@ void FaceDetector::plan_scan(cv::Size size) {
                               cv::Rect(cv::Point(), img);
         octave_jobs.push_back({k, tile, max_face});
       }
-    jobs_.insert(jobs_.begin(), octave_jobs.begin(), octave_jobs.end());  // large faces (coarse octaves) first
+    jobs.insert(jobs.begin(), octave_jobs.begin(), octave_jobs.end());  // large faces (coarse octaves) first
   }
   // The smallest faces last: an octave on the frame enlarged by face.upscale (faces min_px / upscale .. min_px
   // in the frame), in tiles within the budget.
@@ -153,7 +154,7 @@ void FaceDetector::plan_scan(cv::Size size) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const int x0 = i * img.width / nx, x1 = (i + 1) * img.width / nx, y0 = j * img.height / ny, y1 = (j + 1) * img.height / ny;
-        jobs_.push_back({k, cv::Rect(cv::Point(x0 - overlap / 2, y0 - overlap / 2), cv::Point(x1 + overlap / 2, y1 + overlap / 2)) &
+        jobs.push_back({k, cv::Rect(cv::Point(x0 - overlap / 2, y0 - overlap / 2), cv::Point(x1 + overlap / 2, y1 + overlap / 2)) &
                                 cv::Rect(cv::Point(), img),
                          max_face});
       }
@@ -161,8 +162,8 @@ void FaceDetector::plan_scan(cv::Size size) {
 }
 
 int FaceDetector::scan_tiles(cv::Size frame_size) {
-  if (frame_size != jobs_for_) plan_scan(frame_size);
-  return static_cast<int>(jobs_.size());
+  if (frame_size != scan_.planned_for) plan_scan(frame_size, scan_);
+  return static_cast<int>(scan_.jobs.size());
 }
 
 std::vector<FaceDetection> FaceDetector::scan_step_all(const cv::Mat& frame) {
@@ -172,8 +173,40 @@ std::vector<FaceDetection> FaceDetector::scan_step_all(const cv::Mat& frame) {
     last_step_pixels_ = static_cast<double>(frame.total());
     return detect_all(frame);
   }
-  if (frame.size() != jobs_for_) plan_scan(frame.size());
-  if (jobs_.empty()) return {};
+  return step(frame, scan_);
+}
+
+std::vector<FaceDetection> FaceDetector::window_step_all(const cv::Mat& frame, const cv::Rect& roi) {
+  last_step_pixels_ = 0;
+  const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};
+  // What detect_all searches in r: the window (shrunk to max_search_pixels) and its enlarged copy.
+  const double area = static_cast<double>(r.area());
+  const double k = std::max({1.0, p_.face.downscale, std::sqrt(area / std::max(1.0, p_.face.max_search_pixels))});
+  const double u = p_.face.upscale;
+  const bool enlarged = u > 1.0 && k <= 1.0 && area * u * u <= p_.face.max_search_pixels;
+  const double pixels = area / (k * k) + (enlarged ? area * u * u : 0.0);
+  if (p_.face.scan_slice_pixels <= 0 || pixels <= p_.face.scan_slice_pixels) {
+    last_step_pixels_ = pixels;
+    return detect_all(frame, r);
+  }
+  // Over the budget (a large box, or a small one's enlarged copy: person12_1's 70x176 px window searched
+  // enlarged too cost 35 ms a frame at 1280x720, the whole-frame scan's steps 20): scanned over calls.
+  if (r != window_for_) {
+    window_for_ = r;
+    window_.planned_for = cv::Size();
+  }
+  std::vector<FaceDetection> all = step(frame(r), window_);
+  for (FaceDetection& d : all) {
+    d.face += cv::Point2d(r.tl());
+    d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+  }
+  return all;
+}
+
+std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) {
+  if (frame.size() != scan.planned_for) plan_scan(frame.size(), scan);
+  if (scan.jobs.empty()) return {};
   if (frame.channels() == 3)
     cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
   else
@@ -182,7 +215,7 @@ std::vector<FaceDetection> FaceDetector::scan_step_all(const cv::Mat& frame) {
   const int min_px = p_.face.min_face_px;
   std::vector<cv::Rect> faces;
   while (true) {
-    const ScanJob& job = jobs_[next_job_];
+    const ScanJob& job = scan.jobs[scan.next];
     if (last_step_pixels_ > 0 && last_step_pixels_ + job.tile.area() > p_.face.scan_slice_pixels) break;
     if (job.shrink != shrunk_for) {
       if (job.shrink != 1.0)
@@ -194,13 +227,13 @@ std::vector<FaceDetection> FaceDetector::scan_step_all(const cv::Mat& frame) {
       shrunk_for = job.shrink;
     }
     last_step_pixels_ += job.tile.area();
-    next_job_ = (next_job_ + 1) % jobs_.size();
+    scan.next = (scan.next + 1) % scan.jobs.size();
     faces.clear();
     cascade_.detectMultiScale(small_(job.tile & cv::Rect(cv::Point(), small_.size())), faces, p_.face.scale_factor,
                               p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
                               job.max_face > 0 ? cv::Size(job.max_face, job.max_face) : cv::Size());
     if (!faces.empty()) return sorted_of(faces, job.shrink, job.tile.tl(), frame);
-    if (next_job_ == 0) break;  // the scan is complete: the next frame starts it again
+    if (scan.next == 0) break;  // the scan is complete: the next frame starts it again
   }
   return {};
 }

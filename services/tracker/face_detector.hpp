@@ -48,8 +48,13 @@ class FaceDetector {
   // detect(frame).
   std::optional<FaceDetection> scan_step(const cv::Mat& frame);
   std::vector<FaceDetection> scan_step_all(const cv::Mat& frame);  //!< every face of that tile, the largest first
-  void restart_scan() { next_job_ = 0; }
-  //! Tiles in the scan of a frame of this size, and the pixels the last scan_step searched.
+  // A search of roi (LOST: around the last box) within the same budget: detect_all(frame, roi) when the window
+  // and its enlarged copy (face.upscale) are at most scan_slice_pixels together; else the window is scanned
+  // like a frame of its own (octaves, tiles), one budget a call, going on where the last call for the same roi
+  // stopped (a new roi starts over). Boxes in frame pixels.
+  std::vector<FaceDetection> window_step_all(const cv::Mat& frame, const cv::Rect& roi);
+  void restart_scan() { scan_.next = 0; window_.next = 0; }
+  //! Tiles in the scan of a frame of this size, and the pixels the last scan_step or window_step searched.
   int scan_tiles(cv::Size frame_size);
   double last_step_pixels() const { return last_step_pixels_; }
 
@@ -59,15 +64,22 @@ class FaceDetector {
     cv::Rect tile;  //!< in the shrunk image
     int max_face;   //!< largest face searched, shrunk pixels (0: no bound)
   };
-  void plan_scan(cv::Size frame_size);
+  struct Scan {
+    std::vector<ScanJob> jobs;
+    cv::Size planned_for;
+    size_t next = 0;
+  };
+  void plan_scan(cv::Size frame_size, Scan& scan) const;
+  //! The next jobs of scan on img (the frame or a window of it) within the budget; boxes in img's pixels.
+  std::vector<FaceDetection> step(const cv::Mat& img, Scan& scan);
   std::vector<FaceDetection> sorted_of(std::vector<cv::Rect> faces, double k, cv::Point offset, const cv::Mat& frame) const;
 
   TrackerParams p_;
   cv::CascadeClassifier cascade_;
   cv::Mat grey_, small_;
-  std::vector<ScanJob> jobs_;
-  cv::Size jobs_for_;
-  size_t next_job_ = 0;
+  Scan scan_;    //!< the whole frame's
+  Scan window_;  //!< the window's of window_step_all, for window_for_
+  cv::Rect window_for_;
   double last_step_pixels_ = 0;
 };
 

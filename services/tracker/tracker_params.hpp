@@ -198,7 +198,8 @@ struct TrackerParams {
   int redetect_frames = 2;
   int lost_search_frames = 50;         //!< frames LOST (last box kept, filter re-detection) before SEARCHING
   // While not tracking, the face search alternates, one search a frame: every search_full_stride-th frame the
-  // whole (shrunk) frame, else, while LOST, the last good box grown by search_local_scale at full resolution.
+  // whole (shrunk) frame, else, while LOST, the last good box grown by search_local_scale at full resolution,
+  // within face.scan_slice_pixels too (a window over it, with its enlarged copy, is searched over frames).
   int search_full_stride = 2;          //!< 1: the whole frame every frame
   double search_local_scale = 2.0;     //!< local window = last body box grown by this factor (each side)
   // The bus adapter (gpilot-tracker): LCM queues 30 frames a channel by default, so a slow stage fell about a

@@ -115,7 +115,8 @@ bool UserTracker::wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& fa
 
 // One face search within the per-frame budget: SEARCHING, a step of the whole-frame scan (FaceDetector::
 // scan_step, face.scan_slice_pixels a frame); LOST, every search_full_stride-th frame a scan step, the others
-// the last good box grown by search_local_scale. True when a track started.
+// the last good box grown by search_local_scale, within the same budget (window_step_all: a window over it is
+// searched over frames). True when a track started.
 bool UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
   const bool full = out_.status != TrackStatus::kLost || searches_++ % p_.search_full_stride == 0;
@@ -126,7 +127,7 @@ bool UserTracker::search(const cv::Mat& frame) {
     const cv::Rect2d& b = last_good_box_;
     const double g = p_.search_local_scale;
     const cv::Point2d c = (b.tl() + b.br()) * 0.5;
-    faces = faces_.detect_all(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
+    faces = faces_.window_step_all(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
   }
   // Each face's body box is checked against the image before a track starts on it (body_fit.hpp), the
   // largest face first: a face with no body in view under it (on a poster, at the bottom edge) is refused

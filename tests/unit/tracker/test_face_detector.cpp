@@ -1,6 +1,7 @@
 // The Haar face search and the head-body ratio on real photographs (data/people, see data/README.md).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -87,6 +88,36 @@ TEST(FaceDetector, ScanStepsFindTheFaceWithinTheBudget) {
   const auto one = at_once.scan_step(img);
   ASSERT_TRUE(one.has_value());
   EXPECT_EQ(one->face, ref->face);
+}
+
+// The LOST search around the last box within the same budget: a window whose search (with its enlarged copy,
+// face.upscale) is over scan_slice_pixels is scanned over calls, each within the budget, and finds the face
+// detect_all finds in it; a window within the budget is detect_all, in one call.
+TEST(FaceDetector, WindowStepsStayWithinTheBudget) {
+  TrackerParams p;  // face.upscale 2, scan_slice_pixels 60000
+  const cv::Mat img = photo("messi5.jpg");
+  const cv::Rect roi(150, 40, 200, 200);  // 40000 px, enlarged 160000: 200000 px searched at once
+  FaceDetector whole(p), steps(p);
+  const auto ref = whole.detect(img, roi);
+  ASSERT_TRUE(ref.has_value());
+  std::vector<FaceDetection> found;
+  int calls = 0;
+  for (; found.empty() && calls < 20; ++calls) {
+    found = steps.window_step_all(img, roi);
+    EXPECT_LE(steps.last_step_pixels(), p.face.scan_slice_pixels) << "call " << calls;
+    EXPECT_GT(steps.last_step_pixels(), 0.0);
+  }
+  ASSERT_FALSE(found.empty()) << "not found in 20 calls";
+  const double inter = (found.front().face & ref->face).area();
+  EXPECT_GT(inter / (found.front().face.area() + ref->face.area() - inter), 0.7) << found.front().face << " vs " << ref->face;
+  // Within the budget (90x90: 8100 + 32400 px): exactly detect_all's faces, in one call.
+  const cv::Rect small(200, 70, 90, 90);
+  const auto in_one = steps.window_step_all(img, small);
+  const auto at_once = whole.detect_all(img, small);
+  ASSERT_EQ(in_one.size(), at_once.size());
+  ASSERT_FALSE(in_one.empty());
+  EXPECT_EQ(in_one.front().face, at_once.front().face);
+  EXPECT_DOUBLE_EQ(steps.last_step_pixels(), 90.0 * 90.0 * 5);
 }
 
 TEST(FaceDetector, FindsNoFaceOutsideTheSkier) {
