@@ -3,10 +3,12 @@
 #include "process_channels.hpp"
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <poll.h>
 #include <regex>
 #include <unistd.h>
 
@@ -54,6 +56,17 @@ bool is_network_url(const std::string& url) { return url.rfind("udpm://", 0) == 
 
 }  // namespace
 
+std::string frames_url_for(const std::string& url, const BusParams& params) {
+  if (!params.frames_url.empty()) return params.frames_url;
+  // udpm://GROUP:PORT?OPTIONS (LCM's own default port 7667 when none is given)
+  static const std::regex udpm(R"(^udpm://([^:/?]+)(?::([0-9]+))?(.*)$)");
+  std::smatch m;
+  if (!std::regex_match(url, m, udpm)) return url;
+  const long port = m[2].matched ? std::stol(m[2].str()) : 7667;
+  if (port <= 0 || port >= 65535) return url;
+  return "udpm://" + m[1].str() + ":" + std::to_string(port + 1) + m[3].str();
+}
+
 bool url_leaves_host(const std::string& url) {
   if (!is_network_url(url)) return false;
   static const std::regex ttl("[?&]ttl=([0-9]+)");
@@ -62,7 +75,7 @@ bool url_leaves_host(const std::string& url) {
 }
 
 BusNode::BusNode(std::string name, const std::string& url, const BusParams& params)
-    : name_(std::move(name)), url_(url), network_bus_(is_network_url(url)) {
+    : name_(std::move(name)), url_(url), frames_url_(frames_url_for(url, params)), network_bus_(is_network_url(url)) {
   std::string key_file = params.key_file;
   if (const char* env = std::getenv("GPILOT_BUS_KEY"); env && *env) key_file = env;
   const int64_t window = seconds_to_utime(params.time_window_s);
@@ -76,10 +89,16 @@ BusNode::BusNode(std::string name, const std::string& url, const BusParams& para
   } catch (const std::runtime_error& e) {
     throw BusError(name_ + ": " + e.what());
   }
-  if (!signer_ && url_leaves_host(url_))
-    throw BusError(name_ + ": '" + url_ + "' reaches other hosts (ttl > 0) and no bus key is set: anyone on the "
-                   "network could fly the drone. Make a key with gpilot-keygen FILE, install the same file on the "
-                   "drone and the ground station, and set bus.key_file (or GPILOT_BUS_KEY=FILE)");
+  for (const std::string& u : {url_, frames_url_})
+    if (!signer_ && url_leaves_host(u))
+      throw BusError(name_ + ": '" + u + "' reaches other hosts (ttl > 0) and no bus key is set: anyone on the "
+                     "network could fly the drone. Make a key with gpilot-keygen FILE, install the same file on the "
+                     "drone and the ground station, and set bus.key_file (or GPILOT_BUS_KEY=FILE)");
+  try {
+    frames_channels_ = std::regex(params.frames_channels);
+  } catch (const std::regex_error& e) {
+    throw BusError(name_ + ": bus.frames_channels '" + params.frames_channels + "' is not a regex: " + e.what());
+  }
   streams_ = std::make_unique<StreamGuard>(window);
   lcm_ = std::make_unique<lcm::LCM>(url_);
   if (!lcm_->good())
@@ -97,9 +116,29 @@ BusNode::BusNode(std::string name, const std::string& url, const BusParams& para
 
 BusNode::~BusNode() = default;
 
+bool BusNode::on_frames_bus(const std::string& channel) {
+  if (frames_url_ == url_) return false;
+  const auto it = frames_channel_cache_.find(channel);
+  if (it != frames_channel_cache_.end()) return it->second;
+  return frames_channel_cache_[channel] = std::regex_match(channel, frames_channels_);
+}
+
+lcm::LCM& BusNode::frames_lcm() {
+  if (!frames_lcm_) {
+    auto lcm = std::make_unique<lcm::LCM>(frames_url_);
+    if (!lcm->good())
+      throw BusError(name_ + ": cannot start LCM on the frames URL '" + frames_url_ +
+                     "' (bus.frames_url; a udpm:// URL needs a multicast route: ip route add 224.0.0.0/4 dev lo)");
+    frames_lcm_ = std::move(lcm);
+  }
+  return *frames_lcm_;
+}
+
+lcm::LCM& BusNode::lcm_for(const std::string& channel) { return on_frames_bus(channel) ? frames_lcm() : *lcm_; }
+
 void BusNode::send_encoded(const std::string& channel, size_t size) {
   if (signer_) size = signer_->sign(channel, out_.data(), size, now());
-  lcm_->publish(channel, out_.data(), static_cast<unsigned int>(size));
+  lcm_for(channel).publish(channel, out_.data(), static_cast<unsigned int>(size));
 }
 
 BusNode::Opened BusNode::open(const std::string& channel, const lcm::ReceiveBuffer& rbuf) {
@@ -124,14 +163,20 @@ std::string BusNode::check_stream(const std::string& stream, int64_t utime, int6
 }
 
 void BusNode::publish_raw(const std::string& channel, const void* data, size_t size) {
-  lcm_->publish(channel, data, static_cast<unsigned int>(size));
+  lcm_for(channel).publish(channel, data, static_cast<unsigned int>(size));
 }
 
-void BusNode::subscribe_raw(const std::string& channel, RawHandler fn) {
+void BusNode::subscribe_raw(const std::string& channel, RawHandler fn, int queue_capacity) {
   auto sub = std::make_unique<RawSubscription>();
   sub->node = this;
   sub->fn = std::move(fn);
-  lcm_->subscribeFunction(channel, &BusNode::on_any, sub.get());
+  std::vector<lcm::LCM*> buses{lcm_.get()};
+  if (frames_url_ != url_) buses.push_back(&frames_lcm());
+  for (lcm::LCM* bus : buses) {
+    lcm::Subscription* s = bus->subscribeFunction(channel, &BusNode::on_any, sub.get());
+    if (queue_capacity > 0 && s) s->setQueueCapacity(queue_capacity);
+  }
+  frames_subscribed_ = frames_subscribed_ || frames_url_ != url_;
   subs_.push_back(std::move(sub));
 }
 
@@ -146,7 +191,25 @@ void BusNode::on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
 int BusNode::drain() {
   int n = 0;
   while (lcm_->handleTimeout(0) > 0) ++n;
+  if (frames_lcm_)
+    while (frames_lcm_->handleTimeout(0) > 0) ++n;
   return n;
+}
+
+int BusNode::handle_for(int timeout_ms) {
+  if (!frames_subscribed_) return lcm_->handleTimeout(timeout_ms);
+  // Both sockets: wait for either, then dispatch what each has (one message each: LCM's handle).
+  pollfd fds[2] = {{lcm_->getFileno(), POLLIN, 0}, {frames_lcm_->getFileno(), POLLIN, 0}};
+  const int ready = ::poll(fds, 2, timeout_ms);
+  if (ready < 0) return errno == EINTR ? 0 : -1;
+  int handled = 0;
+  for (int i = 0; i < 2; ++i) {
+    if (!(fds[i].revents & POLLIN)) continue;
+    const int r = (i == 0 ? *lcm_ : *frames_lcm_).handleTimeout(0);
+    if (r < 0) return r;
+    handled += r;
+  }
+  return handled;
 }
 
 void BusNode::every(double period_s, std::function<void()> fn) {
@@ -184,7 +247,7 @@ bool BusNode::spin_once(int timeout_ms) {
   const int64_t now = monotonic_utime();
   for (const auto& t : timers_)
     wait_ms = std::min<int>(wait_ms, static_cast<int>(std::max<int64_t>(0, (t.next_us - now + 999) / 1000)));
-  if (lcm_->handleTimeout(wait_ms) < 0) {
+  if (handle_for(wait_ms) < 0) {
     stats_.set_state(health_t::STATE_ERROR, "LCM receive failed");
     return false;
   }

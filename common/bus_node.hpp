@@ -11,7 +11,9 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <map>
 #include <memory>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,6 +54,21 @@ std::string decode_exactly(const void* data, size_t size, Msg& msg) {
   return "";
 }
 
+// A subscription's message is decoded into again and again. LCM's decoders write every field but leave a
+// variable array of length 0 as it was: a message starts afresh (its few small vectors freed), except a
+// frame, whose pixel vector keeps its capacity (resize to the same size neither allocates nor fills) and is
+// emptied after a decode that found no bytes.
+template <class Msg>
+void before_reused_decode(Msg& msg) {
+  msg = Msg{};
+}
+inline void before_reused_decode(image_t&) {}
+template <class Msg>
+void after_reused_decode(Msg&) {}
+inline void after_reused_decode(image_t& msg) {
+  if (msg.size == 0) msg.data.clear();
+}
+
 // Which publisher's stream a message belongs to, where one channel has several (beside the signer's id).
 template <class Msg>
 std::string stream_of(const Msg&) {
@@ -77,6 +94,12 @@ std::string resolve_lcm_url(const std::string& flag);
 // The recv_buf_size asked for in an LCM URL, or 0 if none.
 int64_t recv_buf_size_of(const std::string& url);
 
+// Where the frames (bus.frames_channels) travel beside the bus `url`: bus.frames_url when set, else for a
+// udpm:// URL the same group and options on port + 1, else (memq://, udp://, file://: one process or one
+// peer) `url` itself. The same answer in every process, in gpilot-launch's ${frames_url} (the frames' logger)
+// and deploy/spy.
+std::string frames_url_for(const std::string& url, const BusParams& params);
+
 class BusNode {
  public:
   // Throws BusError when LCM cannot start (no multicast route, bad URL), when a key cannot be read, or on
@@ -84,6 +107,9 @@ class BusNode {
   // below the URL's recv_buf_size. $GPILOT_BUS_KEY, when set, is the key file (over bus.key_file).
   // With a key, every message sent is signed and every message received must be (bus_signature.hpp).
   // Per-stream order and freshness (stream_guard.hpp) are checked on a network bus and in replay.
+  // The channels of bus.frames_channels are sent and received on frames_url_for(url, params) when that is
+  // another URL: its LCM is opened on first use, so a process that never touches a frame channel has no
+  // socket on it (and the kernel copies no frame to it).
   BusNode(std::string name, const std::string& url, const BusParams& params = BusParams{});
   ~BusNode();
   BusNode(const BusNode&) = delete;
@@ -94,9 +120,19 @@ class BusNode {
   // LCM's queue for this channel (its default is 30): a slow stage then skips messages instead of falling
   // behind. LCM 1.3.1 drops the arrivals that find the queue full (not the oldest queued), before this node
   // sees them, so the stage counts its own gaps (seq: common/seq_gaps.hpp).
+  // Each subscription decodes into one message object of its own, reused (a frame's pixel vector keeps its
+  // capacity: no fresh 921 kB allocation and its page faults per 640x480 frame).
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler,
-                 int queue_capacity = 0);
+                 int queue_capacity = 0) {
+    subscribe_taking<Msg>(channel, std::function<void(Msg&, int64_t)>(std::move(handler)), queue_capacity);
+  }
+  // The same, for a handler that keeps the message past its call without copying it: it may move or swap
+  // the message's contents out (a stage pairing frames with tracks); the next message is decoded into what
+  // it leaves there (hand back a used buffer of the same size to keep the decode free of allocations).
+  template <class Msg>
+  void subscribe_taking(const std::string& channel, std::function<void(Msg&, int64_t)> handler,
+                        int queue_capacity = 0);
 
   // Encodes msg into a reused buffer and sends it (signed when the node has a bus key).
   template <class Msg>
@@ -114,9 +150,10 @@ class BusNode {
   void publish_raw(const std::string& channel, const void* data, size_t size);
 
   // Every message on channel (a regex in LCM's sense), undecoded: fn(channel, data, size, receive_utime).
-  // For tools that record or forward (gpilot-replay); stages use the typed subscribe.
+  // For tools that record or forward (gpilot-replay, gpilot-record); stages use the typed subscribe. On both
+  // the bus and the frames URL (the pattern may match either's channels); queue_capacity as subscribe's.
   using RawHandler = std::function<void(const std::string&, const void*, size_t, int64_t)>;
-  void subscribe_raw(const std::string& channel, RawHandler fn);
+  void subscribe_raw(const std::string& channel, RawHandler fn, int queue_capacity = 0);
 
   // Dispatches every message already queued (memq:// replay); returns how many were handled.
   int drain();
@@ -148,6 +185,9 @@ class BusNode {
 
   const std::string& name() const { return name_; }
   const std::string& url() const { return url_; }
+  const std::string& frames_url() const { return frames_url_; }
+  // True when channel is sent and received on frames_url() (bus.frames_channels, and another URL).
+  bool on_frames_bus(const std::string& channel);
   bool signs() const { return signer_ != nullptr; }
   StageStats& stats() { return stats_; }
   void publish_health();
@@ -160,7 +200,9 @@ class BusNode {
   struct TypedSubscription : SubscriptionBase {
     BusNode* node;
     std::string channel;
-    std::function<void(const Msg&, int64_t)> handler;
+    std::function<void(Msg&, int64_t)> handler;
+    Msg msg{};            // decoded into, message after message
+    bool in_use = false;  // a handler that dispatches again (drain) gets a fresh message, not this one
   };
   struct Timer {
     int64_t period_us;
@@ -177,6 +219,9 @@ class BusNode {
   template <class Msg>
   static void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub);
   void run_due_timers();
+  // Waits up to timeout_ms for a message on the bus or (when subscribed) the frames URL and handles it:
+  // > 0 handled, 0 none, < 0 LCM failed.
+  int handle_for(int timeout_ms);
   template <class Msg>
   void send(const std::string& channel, const Msg& msg) {
     const int size = msg.getEncodedSize();
@@ -211,10 +256,19 @@ class BusNode {
     Opened opened;
   } last_opened_;
 
+  // The LCM that carries channel: the frames' (opened now if need be) or the bus's.
+  lcm::LCM& lcm_for(const std::string& channel);
+  lcm::LCM& frames_lcm();
+
   std::string name_;
   std::string url_;
+  std::string frames_url_;
   bool network_bus_;  // udpm:// or udp://: other processes' messages
   std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<lcm::LCM> frames_lcm_;  // opened on first use; null while unused or when frames_url_ == url_
+  bool frames_subscribed_ = false;        // the loop waits on the frames' socket too
+  std::regex frames_channels_;
+  std::map<std::string, bool> frames_channel_cache_;  // channel -> on the frames bus (publish is per message)
   StageStats stats_;
   std::vector<std::unique_ptr<SubscriptionBase>> subs_;
   std::vector<Timer> timers_;
@@ -222,13 +276,15 @@ class BusNode {
 };
 
 template <class Msg>
-void BusNode::subscribe(const std::string& channel, std::function<void(const Msg&, int64_t)> handler,
-                        int queue_capacity) {
+void BusNode::subscribe_taking(const std::string& channel, std::function<void(Msg&, int64_t)> handler,
+                               int queue_capacity) {
   auto sub = std::make_unique<TypedSubscription<Msg>>();
   sub->node = this;
   sub->channel = channel;
   sub->handler = std::move(handler);
-  lcm::Subscription* s = lcm_->subscribeFunction(channel, &BusNode::on_raw<Msg>, sub.get());
+  const bool frames = on_frames_bus(channel);
+  lcm::Subscription* s = lcm_for(channel).subscribeFunction(channel, &BusNode::on_raw<Msg>, sub.get());
+  frames_subscribed_ = frames_subscribed_ || frames;
   if (queue_capacity > 0 && s) s->setQueueCapacity(queue_capacity);
   subs_.push_back(std::move(sub));
 }
@@ -238,8 +294,12 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   BusNode& node = *sub->node;
   const Opened opened = node.open(channel, *rbuf);
   std::string why = opened.why;
-  Msg msg;
+  std::unique_ptr<Msg> nested;  // only when a handler of this subscription is still running
+  if (sub->in_use) nested = std::make_unique<Msg>();
+  Msg& msg = nested ? *nested : sub->msg;
+  before_reused_decode(msg);
   if (why.empty()) why = decode_exactly(opened.data, opened.size, msg);
+  if (why.empty()) after_reused_decode(msg);
   if (why.empty()) why = check_message(msg);
   const int64_t arrival = node.arrival_time(*rbuf);
   if (why.empty() && (node.network_bus_ || node.log_time_ >= 0))
@@ -251,11 +311,14 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   }
   node.stats_.accepted();
   const int64_t t0 = monotonic_utime();
+  const bool outer = !nested;
+  if (outer) sub->in_use = true;
   try {
     sub->handler(msg, arrival);
   } catch (const std::exception& e) {
     node.stats_.rejected(channel + ": the handler failed on this message: " + e.what());
   }
+  if (outer) sub->in_use = false;
   node.stats_.processing_time(monotonic_utime() - t0);
 }
 

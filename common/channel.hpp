@@ -46,6 +46,14 @@ void subscribe(Node& node, const Channel<Msg>& channel, Handler&& handler, int q
                                queue_capacity);
 }
 
+// node.subscribe_taking on a declared channel: the handler takes the channel's message type, non-const (it
+// may move or swap the message's contents out: BusNode::subscribe_taking).
+template <class Node, class Msg, class Handler>
+void subscribe_taking(Node& node, const Channel<Msg>& channel, Handler&& handler, int queue_capacity = 0) {
+  node.template subscribe_taking<Msg>(channel.name, std::function<void(Msg&, int64_t)>(std::forward<Handler>(handler)),
+                                      queue_capacity);
+}
+
 // node.publish on a declared channel: a message of another type does not compile.
 template <class Node, class Msg>
 void publish(Node& node, const Channel<Msg>& channel, const Msg& msg) {

@@ -181,6 +181,8 @@ int main(int argc, char** argv) {
     }
     const std::string url = resolve_lcm_url(cli.lcm_url());
     vars.emplace("lcm_url", url);
+    // the frames' URL (bus.frames_url, else derived from the bus URL): for a services file's own recorder
+    vars.emplace("frames_url", frames_url_for(url, config.section<BusParams>("bus")));
     std::ifstream in(resolve_project_path(services_file));
     if (!in) throw ServiceSetError(services_file + ": cannot open");
     std::stringstream text;

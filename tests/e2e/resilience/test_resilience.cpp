@@ -360,7 +360,8 @@ TEST(Resilience, LauncherKilledStagesStop) {
 TEST(Resilience, LoggerLossesAreInTheSummary) {
   Scratch s("losses");
   const std::string log = s / "log.lcmlog";
-  test::ChildProcess logger({"lcm-logger", "-f", "-q", std::string("--lcm-url=") + kUrl, log});
+  // gpilot-record, as deploy/services.yaml records a run: frames travel on their own URL (bus.frames_url)
+  test::ChildProcess logger({kBin + "/gpilot-record", std::string("--lcm-url=") + kUrl, log});
   BusNode node("test_resilience", kUrl);
   usleep(500000);
   // GIVEN 150 small frames at 25 Hz, the middle 100 of them sent while 921 kB messages flood another channel

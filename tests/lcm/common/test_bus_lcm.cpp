@@ -3,6 +3,7 @@
 // while the receiving node keeps running.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -74,6 +75,8 @@ TEST(BusLcm, BadMessagesAreCountedAndReportedInHealth) {
   image_t wrong = good;
   wrong.height = 96;
   tx.publish("CAMERA", wrong);
+  // (frames travel on a port of their own: no order between them and commands unless waited for)
+  ASSERT_TRUE(spin_until(rx, [&] { return rx.stats().accepted_count() + rx.stats().rejected_count() >= 3; }));
   // AND a command with a NaN, then a valid one
   gesture_cmd_t cmd{};
   cmd.utime = wall_utime();
@@ -132,6 +135,89 @@ TEST(BusLcm, BadUrlIsAClearError) {
   } catch (const BusError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot start LCM"), std::string::npos);
   }
+}
+
+TEST(FramesUrl, DerivedFromTheBusUrlOrGiven) {
+  const BusParams defaults;
+  EXPECT_EQ(frames_url_for(kUrl, defaults), "udpm://239.255.76.67:7668?ttl=0&recv_buf_size=4194304");
+  EXPECT_EQ(frames_url_for("udpm://239.255.76.67", defaults), "udpm://239.255.76.67:7668");
+  EXPECT_EQ(frames_url_for("udpm://239.255.76.70:9000?ttl=1", defaults), "udpm://239.255.76.70:9001?ttl=1");
+  EXPECT_EQ(frames_url_for("memq://", defaults), "memq://") << "one process: one bus";
+  BusParams given;
+  given.frames_url = "udpm://239.255.76.68:7667?ttl=0";
+  EXPECT_EQ(frames_url_for(kUrl, given), "udpm://239.255.76.68:7667?ttl=0");
+}
+
+// Raw LCM on url: every channel name it receives (but LCM's own start-up self tests).
+struct Listener {
+  explicit Listener(const std::string& url) : lcm(url) {
+    lcm.subscribeFunction(".*", +[](const lcm::ReceiveBuffer*, const std::string& ch, std::vector<std::string>* seen) {
+      if (ch != "LCM_SELF_TEST") seen->push_back(ch);
+    }, &seen);
+  }
+  void drain_for(int ms) {
+    const int64_t end = monotonic_utime() + ms * 1000;
+    while (monotonic_utime() < end) lcm.handleTimeout(10);
+  }
+  lcm::LCM lcm;
+  std::vector<std::string> seen;
+};
+
+// GIVEN the default bus.frames_channels (CAMERA) and a frames URL derived from the bus URL
+// WHEN a node publishes a frame and a track
+// THEN a subscriber of both gets both, the bus URL carries only the track and the frames URL only the frame:
+// a process without a CAMERA subscription has no socket that a frame reaches
+TEST(FramesUrl, FramesTravelOnTheirOwnPortAndReachOnlyTheirSubscribers) {
+  BusNode tx("tx", kUrl), rx("rx", kUrl), other("decide", kUrl);
+  Listener bus(kUrl), frames(frames_url_for(kUrl, BusParams{}));
+  EXPECT_EQ(rx.frames_url(), "udpm://239.255.76.67:7668?ttl=0&recv_buf_size=4194304");
+  EXPECT_TRUE(rx.on_frames_bus("CAMERA"));
+  EXPECT_FALSE(rx.on_frames_bus("USER_TRACK"));
+  int frames_in = 0, tracks_in = 0, commands_in = 0;
+  rx.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) { frames_in += m.seq == 5; });
+  rx.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks_in += m.seq == 5; });
+  other.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t&, int64_t) { ++commands_in; });
+  const image_t frame = mat_to_image(cv::Mat(48, 64, CV_8UC3, cv::Scalar(10, 20, 30)), wall_utime(), 5);
+  user_track_t track{};
+  track.utime = frame.utime;
+  track.seq = 5;
+  tx.publish("CAMERA", frame);
+  tx.publish("USER_TRACK", track);
+  ASSERT_TRUE(spin_until(rx, [&] { return frames_in == 1 && tracks_in == 1; }));
+  bus.drain_for(100);
+  frames.drain_for(100);
+  EXPECT_EQ(bus.seen, (std::vector<std::string>{"USER_TRACK"}));
+  EXPECT_EQ(frames.seen, (std::vector<std::string>{"CAMERA"}));
+  other.spin_once(50);
+  EXPECT_EQ(other.stats().accepted_count() + other.stats().rejected_count(), 0);
+}
+
+// GIVEN bus.frames_url set to the bus URL: one bus, as before frames had a port of their own
+TEST(FramesUrl, TheBusUrlAsFramesUrlIsOneBus) {
+  BusParams one;
+  one.frames_url = kUrl;
+  BusNode tx("tx", kUrl, one);
+  EXPECT_FALSE(tx.on_frames_bus("CAMERA"));
+  Listener bus(kUrl);
+  tx.publish("CAMERA", mat_to_image(cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)), wall_utime(), 1));
+  bus.drain_for(100);
+  EXPECT_EQ(bus.seen, (std::vector<std::string>{"CAMERA"}));
+}
+
+// A raw subscription (recorders, gpilot-view) hears both URLs.
+TEST(FramesUrl, ARawSubscriptionHearsBothUrls) {
+  BusNode tx("tx", kUrl), rec("rec", kUrl);
+  std::vector<std::string> seen;
+  rec.subscribe_raw(".*", [&](const std::string& ch, const void*, size_t, int64_t) {
+    if (ch != "HEALTH") seen.push_back(ch);
+  });
+  user_track_t track{};
+  track.utime = wall_utime();
+  tx.publish("CAMERA", mat_to_image(cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)), wall_utime(), 1));
+  tx.publish("USER_TRACK", track);
+  ASSERT_TRUE(spin_until(rec, [&] { return seen.size() == 2; }));
+  std::sort(seen.begin(), seen.end());
+  EXPECT_EQ(seen, (std::vector<std::string>{"CAMERA", "USER_TRACK"}));
 }
 
 }  // namespace

@@ -220,3 +220,72 @@ TEST(WireLengths, EveryLcmtypeWithAStringOrAnArrayHasALayout) {
   EXPECT_EQ(variable, (std::set<std::string>{"config_t", "flight_control_t", "health_t", "image_t", "tracker_init_t"}))
       << "a type with a string or a variable array needs its layout in common/wire_lengths.cpp";
 }
+
+// A subscription decodes into one message, reused: a frame's vector keeps its buffer from frame to frame,
+// yet nothing of a message leaks into the next (a 0-byte frame after a full one has no bytes; a HEALTH
+// without a reject reason after one with).
+TEST(ReusedDecode, AMessageCarriesNothingOfTheOneBefore) {
+  BusNode node("gpilot-test", "memq://");
+  std::vector<std::vector<uint8_t>> datas;
+  std::vector<const uint8_t*> buffers;
+  node.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) {
+    datas.push_back(m.data);
+    buffers.push_back(m.data.data());
+  });
+  std::vector<std::string> reasons;
+  node.subscribe<health_t>("HEALTH", [&](const health_t& h, int64_t) { reasons.push_back(h.last_reject_reason); });
+  image_t a{};
+  a.width = 2, a.height = 1, a.row_stride = 6, a.pixel_format = image_t::PIXEL_FORMAT_BGR8, a.size = 6;
+  a.data = {1, 2, 3, 4, 5, 6};
+  image_t b = a;
+  b.data = {9, 8, 7, 6, 5, 4};
+  image_t empty = a;
+  empty.width = 0, empty.height = 0, empty.row_stride = 0, empty.size = 0, empty.data.clear();
+  for (const image_t* m : {&a, &b}) {
+    node.publish("CAMERA", *m);
+    node.drain();
+  }
+  // WHEN a frame that check_message refuses (no pixels) follows, THEN it is rejected, not given with b's bytes
+  node.publish("CAMERA", empty);
+  node.drain();
+  ASSERT_EQ(datas.size(), 2u);
+  EXPECT_EQ(datas[0], a.data);
+  EXPECT_EQ(datas[1], b.data);
+  EXPECT_EQ(buffers[0], buffers[1]) << "the second frame is decoded into the first one's buffer";
+  EXPECT_EQ(node.stats().rejected_count(), 1);
+  health_t h{};
+  h.name = "x", h.last_reject_reason = "one reason";
+  node.publish("HEALTH", h);
+  h.last_reject_reason = "";
+  node.publish("HEALTH", h);
+  node.drain();
+  EXPECT_EQ(reasons, (std::vector<std::string>{"one reason", ""}));
+}
+
+// A handler that takes the message's bytes (swaps in a buffer of its own) keeps them; the next frame is
+// decoded into the buffer it left.
+TEST(ReusedDecode, ATakingHandlerKeepsTheBytesAndLendsItsBuffer) {
+  BusNode node("gpilot-test", "memq://");
+  std::vector<std::vector<uint8_t>> kept;
+  std::vector<uint8_t> spare(6, 0);
+  const uint8_t* spare_buffer = spare.data();
+  std::vector<const uint8_t*> decoded_into;
+  node.subscribe_taking<image_t>("CAMERA", [&](image_t& m, int64_t) {
+    decoded_into.push_back(m.data.data());
+    kept.emplace_back();
+    kept.back().swap(m.data);
+    m.data.swap(spare);  // spare is empty from the second frame on
+  });
+  image_t a{};
+  a.width = 2, a.height = 1, a.row_stride = 6, a.pixel_format = image_t::PIXEL_FORMAT_BGR8, a.size = 6;
+  a.data = {1, 2, 3, 4, 5, 6};
+  image_t b = a;
+  b.data = {9, 8, 7, 6, 5, 4};
+  node.publish("CAMERA", a);
+  node.publish("CAMERA", b);
+  node.drain();
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0], a.data);
+  EXPECT_EQ(kept[1], b.data);
+  EXPECT_EQ(decoded_into[1], spare_buffer) << "frame b was decoded into the buffer the handler lent";
+}

@@ -49,7 +49,7 @@ TEST(Channels, TheStagesDeclareThePipelinesChannels) {
 // An adapter or tool names a channel only through a declaration: a string literal given to subscribe or
 // publish is a channel nobody declared (and that replay, the view and the docs do not know).
 TEST(Channels, NoAdapterOrToolSubscribesOrPublishesALiteralChannel) {
-  const std::regex literal(R"((subscribe(<[^>]*>)?|subscribe_raw|publish|publish_report|publish_raw)\(\s*")");
+  const std::regex literal(R"((subscribe(<[^>]*>)?|subscribe_taking(<[^>]*>)?|subscribe_raw|publish|publish_report|publish_raw)\(\s*")");
   std::vector<std::string> found;
   for (const char* dir : {"services", "tools"})
     for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(GPILOT_SOURCE_DIR) + "/" + dir)) {

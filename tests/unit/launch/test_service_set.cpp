@@ -98,7 +98,7 @@ TEST(ServiceSet, ShippedFileParsesWithRunVariables) {
                                               {"source", "tour"}, {"capture_extra", ""}, {"backend", "sim"},
                                               {"mavlink", "udp:127.0.0.1:14580"}, {"log", "l"}, {"video_out", "v"}});
   ASSERT_GE(s.size(), 6u);
-  EXPECT_EQ(s.front().name, "lcm-logger");  // records from the first message
+  EXPECT_EQ(s.front().name, "gpilot-record");  // records from the first message, frames too
   EXPECT_EQ(s.back().name, "gpilot-capture");  // frames flow only once every stage listens
   EXPECT_TRUE(s.back().ends_run);
 }
