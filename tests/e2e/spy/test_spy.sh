@@ -32,5 +32,8 @@ xdotool mousemove --window "$win" 60 27 click --repeat 2 1
 sleep 2
 import -window root "$out/lcm-spy.png"
 kill -0 $spy 2>/dev/null || { echo "FAIL: lcm-spy exited"; cat "$out/spy.log"; exit 1; }
+# AND a second lcm-spy watches the frames' URL (CAMERA travels on port + 1: bus.frames_url)
+grep -q "for the frames, on udpm://239.255.76.67:7668" "$out/spy.log" || { echo "FAIL: no lcm-spy on the frames' URL"; cat "$out/spy.log"; exit 1; }
+[ "$(xdotool search --name 'LCM Spy' 2>/dev/null | wc -l)" -ge 2 ] || { echo "FAIL: one 'LCM Spy' window, not two"; exit 1; }
 grep -qi "exception" "$out/spy.log" && { echo "FAIL: lcm-spy raised an exception"; cat "$out/spy.log"; exit 1; }
 echo "lcm-spy found $ntypes types; screenshot: $out/lcm-spy.png"

@@ -1,6 +1,6 @@
 // Two hosts, as a drone and its ground station are deployed: two network namespaces joined by a veth pair
 // with a multicast route, LCM at ttl=1. Perception and flight run on "drone" (gpilot-launch with
-// deploy/services.yaml, no logger and no video there), gpilot-view and lcm-logger on "ground". The ground
+// deploy/services.yaml, no logger and no video there), gpilot-view and gpilot-record on "ground". The ground
 // station receives every channel; at ttl=0 (the default) nothing leaves the drone; and with the deployment's
 // bus key only its holders fly it: an attacker on the network without the key (forged ENGAGE, TRACKER_INIT,
 // GESTURE_CMD and USER_TRACK floods, LAND, a replayed ENGAGE) is rejected and counted, the vehicle holds.
@@ -32,6 +32,8 @@ namespace {
 
 const std::string kUrlTtl1 = "udpm://239.255.76.67:7667?ttl=1&recv_buf_size=4194304";
 const std::string kUrlTtl0 = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+// The frames' URL (bus.frames_url's default: port + 1)
+const std::string kFramesUrlTtl0 = "udpm://239.255.76.67:7668?ttl=0&recv_buf_size=4194304";
 
 void sh(const std::string& cmd) { ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd; }
 
@@ -80,7 +82,8 @@ class TwoHosts : public ::testing::Test {
 TEST_F(TwoHosts, GroundStationHearsEveryChannelOfTheDrone) {
   const std::string src = GPILOT_SOURCE_DIR, bin = GPILOT_BIN_DIR;
   const std::string log = dir_ + "/ground.lcmlog", video = dir_ + "/ground.mp4";
-  ChildProcess logger({"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl1, log});
+  // gpilot-record: the bus and the frames' URL (CAMERA travels on a port of its own) into one log
+  ChildProcess logger({"ip", "netns", "exec", "ground", bin + "/gpilot-record", "--lcm-url", kUrlTtl1, log});
   ChildProcess view({"ip", "netns", "exec", "ground", bin + "/gpilot-view", "--headless", "--video", video,
                      "--lcm-url", kUrlTtl1});
   usleep(500'000);
@@ -111,15 +114,20 @@ TEST_F(TwoHosts, GroundStationHearsEveryChannelOfTheDrone) {
 TEST_F(TwoHosts, AtTtlZeroNothingLeavesTheDrone) {
   const std::string src = GPILOT_SOURCE_DIR, bin = GPILOT_BIN_DIR;
   const std::string log = dir_ + "/ground.lcmlog", local = dir_ + "/drone.lcmlog";
+  const std::string frames_log = dir_ + "/ground-frames.lcmlog";
   ChildProcess logger({"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl0, log});
-  ChildProcess on_drone({"ip", "netns", "exec", "drone", "lcm-logger", "-f", "-q", "--lcm-url=" + kUrlTtl0, local});
+  ChildProcess frames_logger(
+      {"ip", "netns", "exec", "ground", "lcm-logger", "-f", "-q", "--lcm-url=" + kFramesUrlTtl0, frames_log});
+  ChildProcess on_drone({"ip", "netns", "exec", "drone", bin + "/gpilot-record", "--lcm-url", kUrlTtl0, local});
   usleep(500'000);
   sh("ip netns exec drone " + bin + "/gpilot-capture --synthetic tour --duration 1 --lcm-url '" + kUrlTtl0 + "' 2> /dev/null");
   usleep(300'000);
   logger.stop(SIGINT);
+  frames_logger.stop(SIGINT);
   on_drone.stop(SIGINT);
   EXPECT_GT(read_log(local).channels["CAMERA"], 10) << "the drone itself heard nothing: the check proves nothing";
   EXPECT_EQ(read_log(log).channels.size(), 0u) << "ttl=0 traffic reached the ground station";
+  EXPECT_EQ(read_log(frames_log).channels.size(), 0u) << "ttl=0 frames reached the ground station";
 }
 
 struct Flown {
