@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "bus_node.hpp"
 #include "hands/hands_service.hpp"
@@ -22,6 +23,9 @@
 namespace gpilot {
 
 namespace {
+
+// Frames' buffers kept for reuse: one waiting for its track, one being observed, one spare.
+constexpr size_t kSpareBuffers = 3;
 
 void copy_rect(float* out, const cv::Rect& r) {
   out[0] = static_cast<float>(r.x);
@@ -95,6 +99,9 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
         : observer(p, SkinModel::load(model), body), pairer(p.match_window) {}
     HandObserver observer;
     SeqPairer<image_t, user_track_t> pairer;
+    // Pixel buffers of frames already observed, lent back to the bus to decode the next frame into: a frame
+    // costs one copy (datagram -> buffer), no allocation, and is moved, not copied, while it waits for its track.
+    std::vector<std::vector<uint8_t>> spare_buffers;
     int64_t frames_dropped = 0, tracks_dropped = 0;
     SeqGaps gaps;
   };
@@ -105,9 +112,10 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   auto& pairer = state->pairer;
   auto& frames_dropped = state->frames_dropped;
   auto& tracks_dropped = state->tracks_dropped;
+  auto& spare_buffers = state->spare_buffers;
 
   const auto limits = config.section<ImageLimits>("image");
-  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, model_path, limits](std::optional<std::pair<image_t, user_track_t>> pair) {
+  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, &spare_buffers, model_path, limits](std::optional<std::pair<image_t, user_track_t>> pair) {
     for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
       node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
     for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
@@ -116,6 +124,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     const auto& [frame, track] = *pair;
     hand_obs_t obs;
     const std::string why = hands_on_pair(observer, frame, track, limits, obs);
+    if (spare_buffers.size() < kSpareBuffers) spare_buffers.push_back(std::move(pair->first.data));
     if (!why.empty()) return node.reject(why);
     publish(node, hands_channels::kHandObs, obs);
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
@@ -124,9 +133,14 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   // full; a skipped frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the
   // frames this stage published a HAND_OBS of.
   auto& gaps = state->gaps;
-  subscribe(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer](const image_t& m, int64_t) {
+  subscribe_taking(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer, &spare_buffers](image_t& m, int64_t) {
     for (int64_t n = gaps.skipped_before(m.seq); n > 0; --n) node.drop();
-    handle(pairer.add_frame(m.seq, m));
+    image_t frame = std::move(m);  // the received bytes themselves
+    if (!spare_buffers.empty()) {
+      m.data = std::move(spare_buffers.back());
+      spare_buffers.pop_back();
+    }
+    handle(pairer.add_frame(frame.seq, std::move(frame)));
   }, config.section<TrackerParams>("tracker").camera_queue);
   subscribe(node, hands_channels::kUserTrack, [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
   node.set_state(health_t::STATE_DEGRADED, "waiting for CAMERA and USER_TRACK");
