@@ -144,19 +144,37 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
 
   // Scale filter: factors a^n, n = -(S-1)/2 .. (S-1)/2, label peaked at n = 0. σ follows the DSST code
   // (scale_sigma = nScales / sqrt(33) * scale_sigma_factor): 1.44 scales for the published 33 and 1/4.
+  // fDSST (scale_samples n < S): n factors over the same range, a^((k - (n-1)/2) S/n); σ in the same units
+  // (steps of a), so both filters learn the same label shape.
   const int S = p_.number_of_scales;
   const int mid = (S - 1) / 2;
-  scale_factors_.resize(static_cast<size_t>(S));
-  for (int i = 0; i < S; ++i) scale_factors_[static_cast<size_t>(i)] = std::pow(p_.scale_step, i - mid);
-  scale_window_ = S % 2 == 0 ? hann(S + 1) : hann(S);
-  if (S % 2 == 0) scale_window_.erase(scale_window_.begin());
-  if (S == 1) scale_window_.assign(1, 1.0f);
+  const int n = p_.scale_samples > 0 && p_.scale_samples < S ? p_.scale_samples : S;
+  scale_interp_ = n < S;
+  scale_factors_.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+    scale_factors_[static_cast<size_t>(i)] =
+        std::pow(p_.scale_step, scale_interp_ ? (i - (n - 1) / 2) * static_cast<double>(S) / n : i - mid);
+  scale_window_ = n % 2 == 0 ? hann(n + 1) : hann(n);
+  if (n % 2 == 0) scale_window_.erase(scale_window_.begin());
+  if (n == 1) scale_window_.assign(1, 1.0f);
   const double scale_sigma = S / std::sqrt(33.0) * p_.scale_sigma_factor;
   scale_labels_f_.resize(static_cast<size_t>(S));
+  interp_exp_.assign(static_cast<size_t>(S), 0);
+  for (int m = 0; m < S; ++m) interp_exp_[static_cast<size_t>(m)] = m <= S / 2 ? m : m - S;
+  label_no_change_ = scale_interp_ ? 0 : mid;
   for (int c = 0; c < S; ++c) {
-    cv::Mat ys(1, S, CV_32F);
-    for (int i = 0; i < S; ++i)
-      ys.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * (i - c) * (i - c) / (scale_sigma * scale_sigma)));
+    cv::Mat ys(1, n, CV_32F);
+    for (int i = 0; i < n; ++i) {
+      double d = i - c;
+      if (scale_interp_) {
+        // Response index i is a change of t_i sampled steps (circular: index 0 none, the last -1), S/n each;
+        // the label peaks at the change interp_exp_[c], distances taken around the circle of S steps.
+        const double t = (i <= n / 2 ? i : i - n) * static_cast<double>(S) / n;
+        d = t - interp_exp_[static_cast<size_t>(c)];
+        d -= S * std::round(d / S);
+      }
+      ys.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * d * d / (scale_sigma * scale_sigma)));
+    }
     cv::dft(ys, scale_labels_f_[static_cast<size_t>(c)], cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
   }
   const double sf = area > p_.scale_model_max_area ? std::sqrt(p_.scale_model_max_area / area) : 1.0;
@@ -175,7 +193,7 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
   colour_ = p_.colour_weight > 0 && frame.channels() == 3;
   if (colour_) learn_colour(s, true);
   scale_features(frame, pos_, scale_);
-  learn_scale(true, mid);
+  learn_scale(true, label_no_change_);
   have_detection_ = false;
   initialized_ = true;
 }
@@ -307,7 +325,7 @@ void Dsst::learn_translation(const Sample& s, bool first) {
 }
 
 void Dsst::scale_features(const cv::Mat& frame, cv::Point2d pos, double scale) {
-  const int S = p_.number_of_scales;
+  const int S = static_cast<int>(scale_factors_.size());
   const double amax = scale_factors_.back();
   // One anti-aliased shrink of the largest sample, then each scale is a bilinear warp of that small image.
   const cv::Size inter(static_cast<int>(std::ceil(scale_model_sz_.width * amax)),
@@ -341,7 +359,7 @@ void Dsst::scale_features(const cv::Mat& frame, cv::Point2d pos, double scale) {
 
 void Dsst::learn_scale(bool first, int label_centre) {
   const cv::Mat& label_f = scale_labels_f_[static_cast<size_t>(label_centre)];
-  const int S = p_.number_of_scales;
+  const int S = static_cast<int>(scale_factors_.size());
   const int d = scale_x_f_.rows;
   const float rate = first ? 1.0f : static_cast<float>(p_.learning_rate);
   if (first) {
@@ -379,7 +397,7 @@ void Dsst::learn(const cv::Mat& frame) {
     learn_translation(t, false);
     if (colour_) learn_colour(t, false);
     scale_features(frame, pos_, scale_);
-    learn_scale(false, (p_.number_of_scales - 1) / 2);
+    learn_scale(false, label_no_change_);
   }
   have_detection_ = false;
 }
@@ -459,7 +477,7 @@ DsstEstimate Dsst::track(const cv::Mat& frame) {
 
   // Scale: the same filter in 1-D over the scale samples at the new position.
   scale_features(frame, pos_, scale_);
-  const int S = p_.number_of_scales;
+  const int S = static_cast<int>(scale_factors_.size());
   scale_resp_f_.create(1, S, CV_32FC2);
   scale_resp_f_.setTo(0);
   float* sp = scale_resp_f_.ptr<float>();
@@ -477,13 +495,40 @@ DsstEstimate Dsst::track(const cv::Mat& frame) {
     sp[2 * i] *= inv;
     sp[2 * i + 1] *= inv;
   }
-  cv::dft(scale_resp_f_, scale_resp_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
-  cv::Point best;
-  cv::minMaxLoc(scale_resp_, nullptr, nullptr, nullptr, &best);
-  const double new_scale = std::clamp(scale_ * scale_factors_[static_cast<size_t>(best.x)], min_scale_, max_scale_);
-  // The index whose factor is nearest the clamped change is where the target's size sits in the sample.
-  detection_scale_index_ = std::clamp(
-      static_cast<int>(std::lround(std::log(new_scale / scale_) / std::log(p_.scale_step))) + (S - 1) / 2, 0, S - 1);
+  double change = 0;  // in scale steps
+  if (scale_interp_) {
+    // fDSST: the spectrum zero-padded to number_of_scales (its low ceil(n/2) and high floor((n-1)/2)
+    // coefficients; the Nyquist term of an even n dropped, which keeps it Hermitian), the real response at
+    // every interpolated scale.
+    const int Si = p_.number_of_scales;
+    scale_interp_f_.create(1, Si, CV_32FC2);
+    scale_interp_f_.setTo(0);
+    float* ip = scale_interp_f_.ptr<float>();
+    const int low = (S + 1) / 2, high = (S - 1) / 2;
+    for (int i = 0; i < low; ++i) {
+      ip[2 * i] = sp[2 * i];
+      ip[2 * i + 1] = sp[2 * i + 1];
+    }
+    for (int i = 1; i <= high; ++i) {
+      ip[2 * (Si - i)] = sp[2 * (S - i)];
+      ip[2 * (Si - i) + 1] = sp[2 * (S - i) + 1];
+    }
+    cv::dft(scale_interp_f_, scale_resp_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
+    cv::Point best;
+    cv::minMaxLoc(scale_resp_, nullptr, nullptr, nullptr, &best);
+    change = interp_exp_[static_cast<size_t>(best.x)];
+  } else {
+    cv::dft(scale_resp_f_, scale_resp_, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
+    cv::Point best;
+    cv::minMaxLoc(scale_resp_, nullptr, nullptr, nullptr, &best);
+    change = best.x - (S - 1) / 2;
+  }
+  const double new_scale = std::clamp(scale_ * std::pow(p_.scale_step, change), min_scale_, max_scale_);
+  // The label index whose change is nearest the clamped one is where the target's size sits in the sample.
+  const int Si = p_.number_of_scales;
+  const int steps = std::clamp(static_cast<int>(std::lround(std::log(new_scale / scale_) / std::log(p_.scale_step))),
+                               -((Si - 1) / 2), Si / 2);
+  detection_scale_index_ = scale_interp_ ? (steps + Si) % Si : std::clamp(steps + (S - 1) / 2, 0, S - 1);
   scale_ = new_scale;
   detection_sample_ = s;
   have_detection_ = true;

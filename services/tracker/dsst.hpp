@@ -1,7 +1,8 @@
 // DSST, the Discriminative Scale Space Tracker (Danelljan, Häger, Khan, Felsberg, BMVC 2014), our own
 // implementation: a multi-channel correlation filter for translation on 31 FHOG channels (4x4 cells) plus
 // grey intensity, then a separate 1-D filter over 33 scales on the FHOG of resized patches (not
-// compressed: d = 31 x cells of the scale model, as in the BMVC paper, not fDSST's PCA). Both filters are
+// compressed: d = 31 x cells of the scale model, as in the BMVC paper, not fDSST's PCA; optionally fDSST's
+// fewer sampled scales, the response interpolated to 33 in the Fourier domain). Both filters are
 //   A_l = (1-η) A_l + η G conj(F_l),   B = (1-η) B + η Σ_l |F_l|²,   y = IDFT(Σ_l A_l Z_l / (B + λ))
 // with every transform a real-to-complex cv::dft into buffers kept between frames.
 // No clock, no I/O: frames in, boxes out; the same frames give the same boxes.
@@ -89,11 +90,17 @@ class Dsst {
   cv::Mat den_;                // B, CV_32F
   cv::Mat label_, label_f_;    // G in space (CV_32F) and its DFT (CV_32FC2)
 
-  // Scale model.
+  // Scale model. The BMVC filter samples every one of number_of_scales scales; fDSST's (scale_samples) samples
+  // fewer and interpolates the response: sampled scale k is a^e_k, e_k = (k - (n-1)/2) S / n (a = scale_step),
+  // the label peaks at response index 0 for "no change" (fDSST's circular shift), and the interpolated
+  // response's index m is a change of a^interp_exp_[m].
+  bool scale_interp_ = false;
+  int label_no_change_ = 0;        //!< the scale label index of "the size did not change"
+  std::vector<int> interp_exp_;    //!< fDSST: per interpolated index, the change in scale steps
   std::vector<double> scale_factors_;
   std::vector<float> scale_window_;
   cv::Size scale_model_sz_;
-  std::vector<cv::Mat> scale_labels_f_;  // per peak index: 1 x S, CV_32FC2
+  std::vector<cv::Mat> scale_labels_f_;  // per peak (BMVC: sample index; fDSST: interpolated index): 1 x n, CV_32FC2
   // The samples of the last track() (translation DFTs in feats_f_, scale DFTs in scale_x_f_), kept for
   // learn() when params reuse_detection_samples.
   bool have_detection_ = false;
@@ -108,7 +115,7 @@ class Dsst {
   std::vector<cv::Mat> feats_f_;    // their DFTs, CV_32FC2
   std::vector<cv::Mat> scale_fhog_;
   cv::Mat scale_x_, scale_x_f_;     // d x S real, d x S complex
-  cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_;
+  cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_, scale_interp_f_;
   // Colour model (colour_weight > 0 and colour frames): 32x32x32-bin BGR histograms, each summing to 1.
   bool colour_ = false;
   std::vector<float> fg_hist_, bg_hist_, hist_tmp_fg_, hist_tmp_bg_;

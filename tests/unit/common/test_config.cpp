@@ -54,7 +54,10 @@ TEST(Config, DefaultsAreThePapersNumbers) {
   EXPECT_EQ(tracker.dsst.cell_size, 4);
   EXPECT_EQ(tracker.dsst.number_of_scales, 33);
   EXPECT_DOUBLE_EQ(tracker.dsst.scale_step, 1.02);
-  EXPECT_DOUBLE_EQ(tracker.dsst.scale_sigma_factor, 1.0 / 4.0);
+  // The scale filter: fDSST's interpolated search (19 scales sampled, interpolated to 33), its label about one
+  // sampled scale wide; scale_samples 0 with scale_sigma_factor 1/4 is the BMVC paper's filter.
+  EXPECT_DOUBLE_EQ(tracker.dsst.scale_sigma_factor, 0.3);
+  EXPECT_EQ(tracker.dsst.scale_samples, 19);
 
   const auto flight = c.section<FlightParams>("flight");
   EXPECT_DOUBLE_EQ(flight.command_spacing_s, 0.6);

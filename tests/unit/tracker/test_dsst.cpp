@@ -145,7 +145,41 @@ TEST(Dsst, FollowsSubPixelMotionToWithinOnePixel) {
   }
 }
 
-TEST(Dsst, FollowsScaleChangeToWithinTwoPercent) {
+void follows_scale_change(const DsstParams& p, double tolerance = 0.02);
+
+// The default (fDSST's search: 19 scales sampled, interpolated to 33), the BMVC filter (every scale sampled)
+// and fDSST's 17 with its label (σ 33/16 steps).
+TEST(Dsst, FollowsScaleChangeToWithinTwoPercent) { follows_scale_change(DsstParams{}); }
+TEST(Dsst, BmvcScaleFilterFollowsScaleChangeToWithinTwoPercent) {
+  DsstParams bmvc;
+  bmvc.scale_samples = 0;
+  bmvc.scale_sigma_factor = 0.25;
+  follows_scale_change(bmvc);
+}
+// fDSST's 17 lags a little more on the growth of 1 % a frame (2.04 % at frames 16 and 18): within 2.5 %.
+TEST(Dsst, Fdsst17ScaleFilterFollowsScaleChangeToWithinTwoAndAHalfPercent) {
+  DsstParams fdsst;
+  fdsst.scale_samples = 17;
+  fdsst.scale_sigma_factor = 33.0 / 16.0 / (33.0 / std::sqrt(33.0));
+  follows_scale_change(fdsst, 0.025);
+}
+
+// One step of k scale steps (a = 1.02) from the learnt frame: the interpolated response's peak is at k, a
+// scale between two sampled ones (19 sampled are 33/19 = 1.74 steps apart) as much as one on them. (At 4
+// steps, 8 %, the default finds 3 from a model of one frame.)
+TEST(Dsst, InterpolatedScaleSearchFindsEveryStep) {
+  for (int samples : {0, 17, 19}) {
+    DsstParams p;
+    p.scale_samples = samples;
+    for (int k = -3; k <= 3; ++k) {
+      const double s = std::pow(p.scale_step, k);
+      const auto est = run({{cv::Point2d(320, 240), 1.0}, {cv::Point2d(320, 240), s}}, p);
+      EXPECT_NEAR(std::log(est[1].scale) / std::log(p.scale_step), k, 1e-6) << "scale_samples " << samples << ", step " << k;
+    }
+  }
+}
+
+void follows_scale_change(const DsstParams& p, double tolerance) {
   // GIVEN the texture growing 1 % per frame to 1.35x, then shrinking back to 0.9x, while drifting
   std::vector<Truth> truth;
   double s = 1.0;
@@ -160,14 +194,14 @@ TEST(Dsst, FollowsScaleChangeToWithinTwoPercent) {
     s /= 1.011;
     c += cv::Point2d(-0.4, 0.45);
   }
-  const auto est = run(truth);
+  const auto est = run(truth, p);
   // THEN after a few frames to settle (the model follows by η per frame), the scale error stays < 2 %
   // and the centre within 1 px.
   for (size_t i = 0; i < truth.size(); ++i) {
     const cv::Point2d e(est[i].box.x + est[i].box.width / 2, est[i].box.y + est[i].box.height / 2);
     EXPECT_LT(cv::norm(e - truth[i].centre), 1.0) << "frame " << i;
-    EXPECT_NEAR(est[i].scale / truth[i].scale, 1.0, 0.02) << "frame " << i << " scale " << est[i].scale;
-    EXPECT_NEAR(est[i].box.width / (80.0 * truth[i].scale), 1.0, 0.02) << "frame " << i;
+    EXPECT_NEAR(est[i].scale / truth[i].scale, 1.0, tolerance) << "frame " << i << " scale " << est[i].scale;
+    EXPECT_NEAR(est[i].box.width / (80.0 * truth[i].scale), 1.0, tolerance) << "frame " << i;
   }
 }
 
