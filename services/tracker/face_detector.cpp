@@ -41,11 +41,13 @@ std::optional<FaceDetection> first(const std::vector<FaceDetection>& faces) {
 }
 }  // namespace
 
-std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame) { return first(detect_all(frame)); }
-std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv::Rect& roi) { return first(detect_all(frame, roi)); }
+std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, double min_face) { return first(detect_all(frame, min_face)); }
+std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv::Rect& roi, double min_face) {
+  return first(detect_all(frame, roi, min_face));
+}
 std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) { return first(scan_step_all(frame)); }
 
-std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame) {
+std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double min_face) {
   if (frame.empty()) return {};
   if (frame.channels() == 3)
     cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
@@ -66,11 +68,13 @@ std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame) {
   std::vector<FaceDetection> out = sorted_of(faces, k, cv::Point(), frame);
   // Faces below min_face_px, in an enlarged copy, when that copy is within the budget (a small window).
   const double u = p_.face.upscale;
-  if (u > 1.0 && k <= 1.0 && static_cast<double>(grey_.total()) * u * u <= p_.face.max_search_pixels) {
+  const int max_px = static_cast<int>(std::ceil(kUpscaleSizeOverlap * min_px * u));
+  // The smallest face wanted, in the enlarged copy (the cascade's cost is mostly its smallest windows).
+  const int from_px = std::max(min_px, static_cast<int>(std::floor(min_face * u)));
+  if (u > 1.0 && k <= 1.0 && from_px <= max_px && static_cast<double>(grey_.total()) * u * u <= p_.face.max_search_pixels) {
     cv::resize(grey_, small_, cv::Size(), u, u, cv::INTER_LINEAR);
     faces.clear();
-    const int max_px = static_cast<int>(std::ceil(kUpscaleSizeOverlap * min_px * u));
-    cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+    cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(from_px, from_px),
                               cv::Size(max_px, max_px));
     const size_t first = out.size();
     for (const FaceDetection& d : sorted_of(faces, 1.0 / u, cv::Point(), frame)) {
@@ -238,10 +242,10 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) 
   return {};
 }
 
-std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi) {
+std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
   if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};
-  std::vector<FaceDetection> all = detect_all(frame(r));
+  std::vector<FaceDetection> all = detect_all(frame(r), min_face);
   for (FaceDetection& d : all) {
     d.face += cv::Point2d(r.tl());
     d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);

@@ -77,7 +77,8 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const double fw = b.width / track_body_.width_in_faces;
   const cv::Rect roi = face_recheck_window(b, track_body_);
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
-  const auto face = faces_.detect(frame, roi);
+  // A face below half the expected width is not this user's (the scale gate below): not searched enlarged.
+  const auto face = faces_.detect(frame, roi, fw / 2);
   if (!face) return in_view ? FaceCheck::Missed : FaceCheck::OutOfView;
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
   // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "face_detector.hpp"
 
@@ -118,6 +119,27 @@ TEST(FaceDetector, WindowStepsStayWithinTheBudget) {
   ASSERT_FALSE(in_one.empty());
   EXPECT_EQ(in_one.front().face, at_once.front().face);
   EXPECT_DOUBLE_EQ(steps.last_step_pixels(), 90.0 * 90.0 * 5);
+}
+
+// A face below min_face_px is found only in the enlarged copy (face.upscale 2); a caller that takes no face
+// below min_face (the re-check: half the face it expects) has the enlarged copy searched from there only, or
+// not at all when every face it holds is smaller.
+TEST(FaceDetector, EnlargedSearchLooksOnlyForTheFacesTheCallerTakes) {
+  cv::Mat small;
+  cv::resize(photo("messi5.jpg"), small, cv::Size(), 0.4, 0.4, cv::INTER_AREA);  // the face about 16 px
+  const cv::Rect roi(60, 10, 80, 80);
+  FaceDetector d{TrackerParams{}};
+  const auto any = d.detect(small, roi);
+  ASSERT_TRUE(any.has_value());
+  EXPECT_LT(any->face.width, 20.0) << any->face;
+  EXPECT_TRUE(any->face.contains({98, 45})) << any->face;
+  const auto from_12 = d.detect(small, roi, 12.0);
+  ASSERT_TRUE(from_12.has_value());
+  // The same face (the cascade groups its windows of the sizes searched: the box may differ by a window step).
+  const double inter = (from_12->face & any->face).area();
+  EXPECT_GT(inter / (from_12->face.area() + any->face.area() - inter), 0.7) << from_12->face << " vs " << any->face;
+  EXPECT_FALSE(d.detect(small, roi, 1.5 * any->face.width).has_value());
+  EXPECT_FALSE(d.detect(small, roi, 30.0).has_value());  // above the enlarged copy's largest face (25 px)
 }
 
 TEST(FaceDetector, FindsNoFaceOutsideTheSkier) {
