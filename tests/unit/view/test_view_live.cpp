@@ -35,6 +35,8 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
   const std::string url = kDefaultLcmUrl;
   lcm::LCM lc(url);
   ASSERT_TRUE(lc.good()) << "no multicast route in this namespace";
+  lcm::LCM frames(frames_url_for(url, BusParams{}));  // CAMERA travels on the frames' URL
+  ASSERT_TRUE(frames.good());
   ViewHealth health;
   lc.subscribeFunction("HEALTH", &ViewHealth::on, &health);
 
@@ -57,7 +59,7 @@ TEST(ViewLive, HeadlessWritesAPlayableMp4UntilSigterm) {
   run.decided_mode = [](int64_t) { return gesture_cmd_t::MODE_FINE; };
   const int kFrames = 20;
   for (int s = 0; s < kFrames; ++s) {
-    test::publish_frame(lc, run, s);
+    test::publish_frame(lc, frames, run, s);
     lc.handleTimeout(20);
   }
   const bool all_in = test::wait_for(lc, 20.0, [&] {

@@ -93,6 +93,8 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
 
   lcm::LCM lc(kDefaultLcmUrl);
   ASSERT_TRUE(lc.good());
+  lcm::LCM frames(frames_url_for(kDefaultLcmUrl, BusParams{}));  // CAMERA travels on the frames' URL
+  ASSERT_TRUE(frames.good());
   Heard heard;
   lc.subscribeFunction("HEALTH", &Heard::health, &heard);
   lc.subscribeFunction("TRACKER_INIT", &Heard::init, &heard);
@@ -106,7 +108,7 @@ TEST(ViewWindow, DragSendsTheBoxAndKeysSendCommands) {
   run.t0 = wall_utime();  // frames stamped now: the bus refuses a utime outside bus.time_window_s of its arrival
   for (int s = 0; s < 20; ++s) {  // more than the viewer's hold (12), so frames are drawn
     const image_t img = test::camera_of(run, s);
-    lc.publish("CAMERA", &img);
+    frames.publish("CAMERA", &img);
     lc.handleTimeout(30);
   }
   ASSERT_TRUE(test::wait_for(lc, 20.0, [&] { return heard.view_detail.find("received 20 frames, drew 1") != std::string::npos; }))

@@ -51,9 +51,9 @@ bool wait_for(lcm::LCM& lc, double timeout_s, const std::function<bool()>& done)
   return true;
 }
 
-void publish_frame(lcm::LCM& lc, const SyntheticRun& run, int64_t s) {
+void publish_frame(lcm::LCM& lc, lcm::LCM& frames, const SyntheticRun& run, int64_t s) {
   const image_t img = camera_of(run, s);
-  lc.publish("CAMERA", &img);
+  frames.publish("CAMERA", &img);
   const auto truth = truth_of(run, s);
   lc.publish("GROUND_TRUTH", &truth);
   const auto track = track_of(run, s);

@@ -34,8 +34,8 @@ CommandResult run_tool(const std::string& program, const std::string& args, cons
 // Handles LCM until done() holds or timeout_s of wall time pass; false on timeout.
 bool wait_for(lcm::LCM& lc, double timeout_s, const std::function<bool()>& done);
 
-// Publishes frame seq of run and its per-frame messages (GROUND_TRUTH, USER_TRACK, HAND_OBS, GESTURE_CMD)
-// and VEHICLE_STATE.
-void publish_frame(lcm::LCM& lc, const SyntheticRun& run, int64_t seq);
+// Publishes frame seq of run on frames (the frames' URL, bus.frames_url) and its per-frame messages
+// (GROUND_TRUTH, USER_TRACK, HAND_OBS, GESTURE_CMD) and VEHICLE_STATE on lc (the bus).
+void publish_frame(lcm::LCM& lc, lcm::LCM& frames, const SyntheticRun& run, int64_t seq);
 
 }  // namespace gpilot::test
