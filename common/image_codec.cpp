@@ -1,5 +1,6 @@
 #include "image_codec.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -26,7 +27,27 @@ tjhandle jpeg_decompressor() {
   return handle.h;
 }
 
+// One TurboJPEG compressor per thread (capture encodes every frame), made on first use.
+tjhandle jpeg_compressor() {
+  struct Handle {
+    tjhandle h = tjInitCompress();
+    ~Handle() {
+      if (h) tjDestroy(h);
+    }
+  };
+  thread_local Handle handle;
+  return handle.h;
+}
+
 }  // namespace
+
+bool jpeg_chroma_from_name(const std::string& name, JpegChroma& out) {
+  if (name == "444") out = JpegChroma::k444;
+  else if (name == "422") out = JpegChroma::k422;
+  else if (name == "420") out = JpegChroma::k420;
+  else return false;
+  return true;
+}
 
 std::string jpeg_dimensions(const uint8_t* data, size_t size, int& width, int& height) {
   width = height = 0;
@@ -106,7 +127,8 @@ std::string image_to_mat(const image_t& msg, cv::Mat& out, const ImageLimits& li
   return "";
 }
 
-image_t mat_to_image(const cv::Mat& frame, int64_t utime, int64_t seq, int8_t pixel_format, int jpeg_quality) {
+image_t mat_to_image(const cv::Mat& frame, int64_t utime, int64_t seq, int8_t pixel_format, int jpeg_quality,
+                     JpegChroma chroma) {
   if (frame.empty()) throw std::invalid_argument("mat_to_image: empty frame");
   if (frame.type() != CV_8UC3 && frame.type() != CV_8UC1)
     throw std::invalid_argument("mat_to_image: frame must be 8-bit BGR or grey");
@@ -116,11 +138,24 @@ image_t mat_to_image(const cv::Mat& frame, int64_t utime, int64_t seq, int8_t pi
   msg.width = frame.cols;
   msg.height = frame.rows;
   if (pixel_format == image_t::PIXEL_FORMAT_JPEG) {
-    std::vector<uint8_t> bytes;
-    cv::imencode(".jpg", frame, bytes, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});
+    // TurboJPEG, not cv::imencode: OpenCV 4.6 cannot choose the chroma subsampling (4:2:0 always), and
+    // this saves its copy and codec lookup. Same library, same default tables and DCT.
+    tjhandle tj = jpeg_compressor();
+    if (!tj) throw std::runtime_error("mat_to_image: JPEG encoder could not be made");
+    const bool grey = frame.channels() == 1;
+    const int subsamp = grey ? TJSAMP_GRAY
+                             : chroma == JpegChroma::k444 ? TJSAMP_444 : chroma == JpegChroma::k422 ? TJSAMP_422 : TJSAMP_420;
+    unsigned char* jpeg = nullptr;
+    unsigned long jpeg_size = 0;
+    if (tjCompress2(tj, frame.data, frame.cols, static_cast<int>(frame.step), frame.rows, grey ? TJPF_GRAY : TJPF_BGR,
+                    &jpeg, &jpeg_size, subsamp, std::clamp(jpeg_quality, 1, 100), 0) != 0) {
+      tjFree(jpeg);
+      throw std::runtime_error(std::string("mat_to_image: JPEG encoding failed: ") + tjGetErrorStr2(tj));
+    }
+    msg.data.assign(jpeg, jpeg + jpeg_size);
+    tjFree(jpeg);
     msg.row_stride = 0;
     msg.pixel_format = image_t::PIXEL_FORMAT_JPEG;
-    msg.data = std::move(bytes);
   } else {
     cv::Mat conv = frame;
     if (pixel_format == image_t::PIXEL_FORMAT_GRAY8 && frame.channels() == 3)

@@ -64,6 +64,9 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
   const CaptureParams p = config.section<CaptureParams>("capture");
   const int8_t format = pixel_format_from_name(p.pixel_format);
   if (format < 0) throw ConfigError("capture.pixel_format: '" + p.pixel_format + "' is not BGR8, GRAY8 or JPEG");
+  JpegChroma chroma = JpegChroma::k420;
+  if (!jpeg_chroma_from_name(p.jpeg_chroma, chroma))
+    throw ConfigError("capture.jpeg_chroma: '" + p.jpeg_chroma + "' is not 444, 422 or 420");
 
   std::optional<CameraPose> vehicle;  // the latest VEHICLE_STATE: the synthetic camera flies with it
   subscribe(node, capture_channels::kVehicleState, [&vehicle](const vehicle_state_t& m, int64_t) {
@@ -173,7 +176,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
       case ReadStatus::Frame: {
         f.utime = std::max(f.utime, last_utime + 1);  // each frame its own time, even read within a microsecond
         last_utime = f.utime;
-        const image_t img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality);
+        const image_t img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality, chroma);
         publish(node, capture_channels::kCamera, img);
         if (f.truth) publish(node, capture_channels::kGroundTruth, to_message(*f.truth, f.utime, seq));
         ++seq;

@@ -1,7 +1,7 @@
 // What a JPEG CAMERA frame costs each stage that reads it: image_to_mat (libjpeg-turbo's TurboJPEG API
 // straight into BGR) against cv::imdecode of the same bytes (the path before), and a raw BGR8 frame's
 // image_to_mat (a wrap, no copy), at 640x480 and 1280x720, on a synthetic tour frame encoded at capture's
-// default quality. The figures behind the JPEG default (issue: perceive in 1.5 ms, log a minute in 60 MB).
+// default quality and chroma subsampling. The figures behind the JPEG default (issue: perceive in 1.5 ms, log a minute in 60 MB).
 #include <benchmark/benchmark.h>
 
 #include <opencv2/imgcodecs.hpp>
@@ -20,7 +20,10 @@ image_t tour_frame(int width, int8_t format) {
   cv::Mat bgr = w.render(6.5, 0, std::nullopt).bgr;
   const cv::Size size(width, width == 1280 ? 720 : width * 3 / 4);  // 640x480 or 1280x720
   if (bgr.size() != size) cv::resize(bgr, bgr, size, 0, 0, cv::INTER_LINEAR);
-  return mat_to_image(bgr, 0, 0, format, CaptureParams{}.jpeg_quality);
+  const CaptureParams capture;
+  JpegChroma chroma = JpegChroma::k444;
+  jpeg_chroma_from_name(capture.jpeg_chroma, chroma);
+  return mat_to_image(bgr, 0, 0, format, capture.jpeg_quality, chroma);
 }
 
 void BM_ImageToMatJpeg(benchmark::State& state) {

@@ -68,6 +68,9 @@ class CaptureService : public ::testing::Test {
   fs::path dir_;
 };
 
+// Raw frames (the default is JPEG): pixels compared exactly.
+Config raw_frames() { return Config::from_string("capture:\n  pixel_format: BGR8\n"); }
+
 TEST_F(CaptureService, VideoFileReadsBackEveryFrame) {
   // GIVEN a 60-frame 320x240 video at 20 fps, frame i showing i in its brightness
   const std::string path = write_clip("clip.avi", 60, 20.0, {320, 240}, 4);
@@ -75,7 +78,7 @@ TEST_F(CaptureService, VideoFileReadsBackEveryFrame) {
   Received r;
   listen(node, r);
   // WHEN it is captured
-  EXPECT_EQ(run_capture(Config{}, video(path), node), 0);
+  EXPECT_EQ(run_capture(raw_frames(), video(path), node), 0);
   drain(node);
   // THEN 60 frames of the right size, seq 0..59, utimes on the bus clock and growing, content in order
   ASSERT_EQ(r.frames.size(), 60u);
@@ -142,7 +145,7 @@ TEST_F(CaptureService, ImageFolderInNameOrderWithABadImageRejected) {
   o.kind = CaptureOptions::Kind::Images;
   o.source = dir_.string();
   o.as_fast_as_possible = true;
-  EXPECT_EQ(run_capture(Config{}, o, node), 0);
+  EXPECT_EQ(run_capture(raw_frames(), o, node), 0);
   drain(node);
   // THEN a.png then b.png (grey became BGR), in time order; c.jpg rejected and counted
   ASSERT_EQ(r.frames.size(), 2u);

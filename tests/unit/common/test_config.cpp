@@ -231,7 +231,8 @@ TEST(Config, WrittenDefaultsReadBackExactly) {
   EXPECT_NO_THROW(validate_config(c));
   EXPECT_DOUBLE_EQ(c.section<TrackerParams>("tracker").dsst.output_sigma_factor, 1.0 / 16.0);
   EXPECT_DOUBLE_EQ(c.section<HandsParams>("hands").lambda3, 0.013);
-  EXPECT_EQ(c.section<CaptureParams>("capture").pixel_format, "BGR8");
+  EXPECT_EQ(c.section<CaptureParams>("capture").pixel_format, "JPEG");
+  EXPECT_EQ(c.section<CaptureParams>("capture").jpeg_chroma, "444");
 }
 
 int run(const std::string& args) {

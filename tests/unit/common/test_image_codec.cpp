@@ -21,6 +21,39 @@ cv::Mat pattern(int w, int h) {
   return m;
 }
 
+// The first component's sampling factors in a JPEG's frame header (SOF0): 0x11 for 4:4:4, 0x21 4:2:2, 0x22 4:2:0.
+int luma_sampling(const std::vector<uint8_t>& jpeg) {
+  for (size_t i = 2; i + 11 < jpeg.size(); ++i)
+    if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xC0) return jpeg[i + 11];  // FF C0, length 2, P 1, Y 2, X 2, Nf 1, C1 1
+  return -1;
+}
+
+// GIVEN a grey frame with a 2x2 red square on odd pixels (a hand 10 m away is a few pixels)
+// WHEN it is encoded with each chroma subsampling
+// THEN the header says which, and only 4:4:4 keeps the square red
+TEST(ImageCodec, JpegChromaSubsamplingIsChosen) {
+  cv::Mat src(32, 32, CV_8UC3, cv::Scalar(128, 128, 128));
+  src(cv::Rect(9, 9, 2, 2)).setTo(cv::Scalar(40, 40, 220));
+  JpegChroma c{};
+  ASSERT_TRUE(jpeg_chroma_from_name("444", c));
+  EXPECT_FALSE(jpeg_chroma_from_name("411", c));
+  const auto red_error = [&](JpegChroma chroma, int* sampling) {
+    const image_t msg = mat_to_image(src, 1, 2, image_t::PIXEL_FORMAT_JPEG, 90, chroma);
+    *sampling = luma_sampling(msg.data);
+    cv::Mat back;
+    EXPECT_EQ(image_to_mat(msg, back), "");
+    return cv::norm(back(cv::Rect(9, 9, 2, 2)), src(cv::Rect(9, 9, 2, 2)), cv::NORM_INF);
+  };
+  int s444 = 0, s422 = 0, s420 = 0;
+  const double e444 = red_error(JpegChroma::k444, &s444), e420 = red_error(JpegChroma::k420, &s420);
+  red_error(JpegChroma::k422, &s422);
+  EXPECT_EQ(s444, 0x11);
+  EXPECT_EQ(s422, 0x21);
+  EXPECT_EQ(s420, 0x22);
+  EXPECT_LT(e444, 30) << "4:4:4 keeps the square's colour";
+  EXPECT_GT(e420, 60) << "4:2:0 smears it over its 2x2 chroma blocks";
+}
+
 TEST(ImageCodec, BgrRoundTripIsExact) {
   const cv::Mat src = pattern(64, 48);
   const image_t msg = mat_to_image(src, 123, 4);
