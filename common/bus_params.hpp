@@ -13,7 +13,8 @@ struct BusParams {
   // Frames on a multicast port of their own: a process that never subscribes to CAMERA (decide, flight,
   // launch, health) then has no socket that the kernel copies 25 frames a second into (issue 14).
   std::string frames_url;                 //!< "" = derived from the bus URL (frames_url_for)
-  std::string frames_channels = "CAMERA"; //!< the channels carried on frames_url (an LCM regex)
+  // The camera's per-frame outputs: its frames, and the synthetic world's truth about each (read from logs).
+  std::string frames_channels = "CAMERA|GROUND_TRUTH";  //!< the channels carried on frames_url (an LCM regex)
 
   template <class V>
   void visit(V& v) {
@@ -27,8 +28,8 @@ struct BusParams {
       "LCM URL of the frames (frames_channels): empty = the bus URL's group with port + 1 (same options); the bus "
       "URL itself = one bus for everything; memq:// and other non-udpm buses carry the frames themselves");
     v("frames_channels", frames_channels,
-      "channels sent on frames_url instead of the bus URL (an LCM regex, e.g. CAMERA|CAMERA_.*); a process that "
-      "subscribes to none of them never receives a frame");
+      "channels sent on frames_url instead of the bus URL (an LCM regex): the camera's per-frame outputs; a process "
+      "that subscribes to none of them receives nothing per frame from the camera");
   }
 };
 

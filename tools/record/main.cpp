@@ -1,5 +1,5 @@
-// gpilot-record: records every channel of the bus AND of the frames URL (bus.frames_url: CAMERA travels on a
-// port of its own, issue 14) into one LCM log, the format lcm-logger writes, so that gpilot-report,
+// gpilot-record: records every channel of the bus AND of the frames URL (bus.frames_url: CAMERA and
+// GROUND_TRUTH travel on a port of their own, issue 14) into one LCM log, the format lcm-logger writes, so that gpilot-report,
 // gpilot-replay and lcm-logplayer read one file as before. lcm-logger listens to one URL: run one per URL
 // for two files instead. Events are written in arrival order (EventOrder, held reorder_ms), each with its
 // receive time; the file is flushed every 100 ms (gpilot-launch's ready_file waits for a non-empty file).
@@ -40,10 +40,12 @@ int main(int argc, char** argv) {
       ev.datalen = static_cast<int32_t>(e.data.size());
       ev.data = const_cast<uint8_t*>(e.data.data());
       out.writeEvent(&ev);
+      node.stats().published();  // HEALTH's messages out: events written
       bytes += ev.datalen;
     };
     node.subscribe_raw(channels, [&](const std::string& ch, const void* data, size_t size, int64_t recv_utime) {
       order.add(recv_utime, ch, data, size);
+      node.stats().accepted();  // HEALTH's messages in (gpilot-launch's progress line, gpilot-health)
     }, queue);
     const int64_t hold = static_cast<int64_t>(reorder_ms * 1000);
     node.every(0.1, [&] {

@@ -163,7 +163,7 @@ struct Listener {
   std::vector<std::string> seen;
 };
 
-// GIVEN the default bus.frames_channels (CAMERA) and a frames URL derived from the bus URL
+// GIVEN the default bus.frames_channels (CAMERA|GROUND_TRUTH) and a frames URL derived from the bus URL
 // WHEN a node publishes a frame and a track
 // THEN a subscriber of both gets both, the bus URL carries only the track and the frames URL only the frame:
 // a process without a CAMERA subscription has no socket that a frame reaches
@@ -172,7 +172,9 @@ TEST(FramesUrl, FramesTravelOnTheirOwnPortAndReachOnlyTheirSubscribers) {
   Listener bus(kUrl), frames(frames_url_for(kUrl, BusParams{}));
   EXPECT_EQ(rx.frames_url(), "udpm://239.255.76.67:7668?ttl=0&recv_buf_size=4194304");
   EXPECT_TRUE(rx.on_frames_bus("CAMERA"));
+  EXPECT_TRUE(rx.on_frames_bus("GROUND_TRUTH"));
   EXPECT_FALSE(rx.on_frames_bus("USER_TRACK"));
+  EXPECT_FALSE(rx.on_frames_bus("CAMERA_2")) << "a regex matches whole names";
   int frames_in = 0, tracks_in = 0, commands_in = 0;
   rx.subscribe<image_t>("CAMERA", [&](const image_t& m, int64_t) { frames_in += m.seq == 5; });
   rx.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks_in += m.seq == 5; });
