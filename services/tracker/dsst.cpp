@@ -31,6 +31,9 @@ void crop_replicate(const cv::Mat& frame, const cv::Rect& r, cv::Mat& out) {
   }
   // The track centre is kept inside the frame, so the crop always overlaps it.
   CV_Assert(inside.area() > 0);
+  // out may still be a view into the frame from a crop that was inside: copyMakeBorder would write this crop
+  // into the frame itself when the sizes match (the wide search's windows are all one size).
+  if (out.data >= frame.datastart && out.data < frame.dataend) out.release();
   cv::copyMakeBorder(frame(inside), out, inside.y - r.y, r.br().y - inside.br().y, inside.x - r.x,
                      r.br().x - inside.br().x, cv::BORDER_REPLICATE);
 }
@@ -126,6 +129,7 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
   base_size_ = box.size();
   scale_ = 1.0;
   psr_ = 0.0;
+  good_psr_ = 0.0;
 
   const double area = box.area();
   model_factor_ = 1.0;
@@ -387,6 +391,10 @@ void Dsst::check_frame(const cv::Mat& frame, const char* who) const {
 void Dsst::learn(const cv::Mat& frame) {
   if (!initialized_) throw std::logic_error("Dsst::learn before init");
   check_frame(frame, "Dsst::learn");
+  // The mean PSR of the frames learnt (an exponential average over about 10), the wide search's standard; here,
+  // not in track(): the first track() after init, on the frame the filter was learnt from, gives PSR in the
+  // hundreds.
+  if (have_detection_ && psr_ >= p_.wide_search_psr) good_psr_ = good_psr_ > 0 ? 0.9 * good_psr_ + 0.1 * psr_ : psr_;
   if (p_.reuse_detection_samples && have_detection_) {
     // The target sits at the estimate inside the detection samples: labels centred there.
     learn_translation(detection_sample_, false);
@@ -402,14 +410,14 @@ void Dsst::learn(const cv::Mat& frame) {
   have_detection_ = false;
 }
 
-DsstEstimate Dsst::track(const cv::Mat& frame) {
-  if (!initialized_) throw std::logic_error("Dsst::track before init");
-  check_frame(frame, "Dsst::track");
+// The translation step on a sample centred at centre: the filter's response (merged with the colour model's),
+// its peak refined to a fraction of a cell, the filter's PSR. The sample's DFTs stay in feats_f_ (learn()).
+Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre) {
   const int cell = p_.cell_size;
   const float lambda = static_cast<float>(p_.lambda);
 
   // Translation: y = IDFT(Σ_l A_l Z_l / (B + λ)).
-  const Sample s = translation_features(frame, pos_, scale_);
+  const Sample s = translation_features(frame, centre, scale_);
   const int n = cells_.area();
   resp_f_.create(cells_, CV_32FC2);
   resp_f_.setTo(0);
@@ -453,11 +461,11 @@ DsstEstimate Dsst::track(const cv::Mat& frame) {
       ++count;
     }
   }
-  psr_ = 0.0;
+  double psr = 0.0;
   if (count > 1) {
     const double mean = sum / count;
     const double sd = std::sqrt(std::max(sum2 / count - mean * mean, 0.0));
-    psr_ = std::max(0.0, (peak_value - mean) / std::max(sd, 1e-9));
+    psr = std::max(0.0, (peak_value - mean) / std::max(sd, 1e-9));
   }
   double qx = px, qy = py;
   if (colour_) {
@@ -472,8 +480,42 @@ DsstEstimate Dsst::track(const cv::Mat& frame) {
     qx = m.x + peak_offset(mat(m.y, m.x - 1), mv, mat(m.y, m.x + 1));
     qy = m.y + peak_offset(mat(m.y - 1, m.x), mv, mat(m.y + 1, m.x));
   }
-  pos_.x = std::clamp(s.centre.x + (qx + 0.5) * cell * s.frame_per_model.x, 0.0, frame.cols - 1e-3);
-  pos_.y = std::clamp(s.centre.y + (qy + 0.5) * cell * s.frame_per_model.y, 0.0, frame.rows - 1e-3);
+  return Translation{s, s.centre.x + (qx + 0.5) * cell * s.frame_per_model.x, s.centre.y + (qy + 0.5) * cell * s.frame_per_model.y, psr};
+}
+
+DsstEstimate Dsst::track(const cv::Mat& frame, bool wide_search) {
+  if (!initialized_) throw std::logic_error("Dsst::track before init");
+  check_frame(frame, "Dsst::track");
+  const float lambda = static_cast<float>(p_.lambda);
+
+  Translation t = translate(frame, pos_);
+  if (wide_search && p_.wide_search_psr > 0 && t.psr < p_.wide_search_psr) {
+    // A weak response: the target may have jumped out of the window (a fast pan: uav123_person12_1 moves 27 px a
+    // frame, two thirds of its width). The 8 windows around, wide_search_offset of a window apart; the best is
+    // taken only if it is a sure frame itself (PSR >= wide_search_accept_psr), else the weak estimate stands.
+    const cv::Size2d w = window_frame_ * scale_;
+    const double off = p_.wide_search_offset;
+    cv::Point2d best_centre = pos_;
+    // A sure frame by this track's own standard too: a still cut to another scene gave windows at PSR 10+
+    // (the sample clip's track runs at 36..60).
+    double best_psr = std::max({p_.wide_search_psr, p_.wide_search_accept_psr, p_.wide_search_accept_share * good_psr_});
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const cv::Point2d c(pos_.x + dx * off * w.width, pos_.y + dy * off * w.height);
+        if ((dx == 0 && dy == 0) || c.x < 0 || c.y < 0 || c.x >= frame.cols || c.y >= frame.rows) continue;
+        const Translation n = translate(frame, c);
+        if (n.psr >= best_psr) {
+          best_psr = n.psr;
+          best_centre = c;
+        }
+      }
+    // Sampled again where it was found: its features (and patch) are the ones learnt from.
+    t = translate(frame, best_centre);
+  }
+  const Sample& s = t.sample;
+  psr_ = t.psr;
+  pos_.x = std::clamp(t.x, 0.0, frame.cols - 1e-3);
+  pos_.y = std::clamp(t.y, 0.0, frame.rows - 1e-3);
 
   // Scale: the same filter in 1-D over the scale samples at the new position.
   scale_features(frame, pos_, scale_);

@@ -32,7 +32,8 @@ class Dsst {
   void init(const cv::Mat& frame, const cv::Rect2d& box);
 
   // Finds the target in frame: translation, then scale at the new position. The model is not changed.
-  DsstEstimate track(const cv::Mat& frame);
+  // wide_search: a weak response is searched again around (params wide_search_psr); false: the one window.
+  DsstEstimate track(const cv::Mat& frame, bool wide_search = true);
   // Updates both filters with samples of frame at the current estimate (rate η).
   void learn(const cv::Mat& frame);
   // The published tracker: track, then learn, every frame.
@@ -56,6 +57,12 @@ class Dsst {
     cv::Point2d centre;
     cv::Point2d frame_per_model;
   };
+  struct Translation {
+    Sample sample;
+    double x, y;  //!< the estimate, frame pixels
+    double psr;
+  };
+  Translation translate(const cv::Mat& frame, cv::Point2d centre);
   Sample translation_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void scale_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void learn_translation(const Sample& s, bool first);
@@ -79,6 +86,7 @@ class Dsst {
   double scale_ = 1.0;
   double min_scale_ = 0.0, max_scale_ = 0.0;
   double psr_ = 0.0;
+  double good_psr_ = 0.0;    // mean PSR of the frames learnt at wide_search_psr or more (exponential, rate 0.1)
 
   // Translation model: the window (target × (1 + padding)) at model resolution.
   double model_factor_ = 1.0;  // model pixels per frame pixel at scale 1

@@ -81,6 +81,17 @@ struct DsstParams {
   // 0.15 gains on 5 of 6 real clips and the synthetic tour (tracker README).
   double colour_weight = 0.15;
   double colour_learning_rate = 0.04;  //!< Staple's 0.04
+  // A frame whose response is weak (PSR below wide_search_psr) is searched again in the 8 windows around, each
+  // wide_search_offset of a window's side away; the best is taken if its PSR reaches wide_search_accept_psr
+  // (a sure frame: redetect_psr's 10; from 7 it jumped onto the waves of dtb70_Surfing06, -0.14 AUC). A fast
+  // pan (uav123_person12_1: 27 px a frame, two thirds of the target's width) had left the window: 0.48 -> 0.77.
+  // Not while LOST (the re-detection searches one window). 0: off.
+  double wide_search_psr = 7.0;
+  double wide_search_offset = 0.5;
+  double wide_search_accept_psr = 10.0;
+  // ... and at least this share of the track's mean PSR over its good frames: a still cut to another scene gave
+  // windows at PSR 10+ where the track had run at 36..60 (UserTracker.CutToAnotherScene...).
+  double wide_search_accept_share = 0.5;
 
   template <class V>
   void visit(V& v) {
@@ -100,6 +111,10 @@ struct DsstParams {
     v("reuse_detection_samples", reuse_detection_samples, "learn from the detection samples (false: sample again, as DSST)");
     v("colour_weight", colour_weight, 0.0, 1.0, "Staple: weight of the colour-histogram response (0: off; Staple 0.3)");
     v("colour_learning_rate", colour_learning_rate, 0.0, 1.0, "Staple: colour histograms' update rate (Staple 0.04)");
+    v("wide_search_psr", wide_search_psr, 0.0, 100.0, "PSR below this: the 8 windows around are searched too, the best taken at this PSR (0: off)");
+    v("wide_search_offset", wide_search_offset, 0.05, 2.0, "wide search: the windows' offset, fraction of the window's side");
+    v("wide_search_accept_psr", wide_search_accept_psr, 0.0, 100.0, "wide search: a window is taken at this PSR at least (and at wide_search_psr)");
+    v("wide_search_accept_share", wide_search_accept_share, 0.0, 10.0, "wide search: ... and at this share of the track's mean PSR of its good frames");
   }
 };
 

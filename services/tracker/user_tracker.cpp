@@ -211,7 +211,8 @@ void UserTracker::lost_frame(const cv::Mat& frame) {
     // The last good model, not learnt while lost, searching around the last good estimate on every frame (a
     // search that followed its own peaks would wander off with the background and shrink the scale away).
     dsst_.restore(last_good_estimate_);
-    const DsstEstimate e = dsst_.track(frame);
+    // One window, not the wide search (a weak response is the rule here): the LOST frame's budget is the face search's.
+    const DsstEstimate e = dsst_.track(frame, false);
     redetect_hits_ = e.psr >= p_.redetect_psr ? redetect_hits_ + 1 : 0;
     if (redetect_hits_ >= p_.redetect_frames) {
       out_.status = TrackStatus::kTracking;

@@ -205,6 +205,27 @@ void follows_scale_change(const DsstParams& p, double tolerance) {
   }
 }
 
+// A jump out of the window (a fast pan): the weak response is searched again in the 8 windows around
+// (wide_search_psr), and the target is found where it went at once; with the wide search off the box stays
+// behind on that frame.
+TEST(Dsst, WideSearchFindsATargetThatJumpedOutOfTheWindow) {
+  std::vector<Truth> truth;
+  for (int i = 0; i < 12; ++i) truth.push_back({cv::Point2d(300.0 + 0.5 * i, 240.0), 1.0});
+  // 80 px: a box width, half the window (160 px wide), where the filter's response is weak
+  for (int i = 0; i < 3; ++i) truth.push_back({cv::Point2d(385.5 + 0.5 * i, 240.0), 1.0});
+  DsstParams off;
+  off.wide_search_psr = 0;
+  const auto wide = run(truth), stays = run(truth, off);
+  for (size_t i = 12; i < truth.size(); ++i) {
+    const cv::Point2d w(wide[i].box.x + wide[i].box.width / 2, wide[i].box.y + wide[i].box.height / 2);
+    EXPECT_LT(cv::norm(w - truth[i].centre), 2.0) << "frame " << i << " at " << w;
+  }
+  // Off: the first frame after the jump stays behind (the filter catches up over the next two).
+  const cv::Point2d o(stays[12].box.x + stays[12].box.width / 2, stays[12].box.y + stays[12].box.height / 2);
+  EXPECT_GT(cv::norm(o - truth[12].centre), 20.0) << o << " (wide search off)";
+  EXPECT_GT(wide[12].psr, 10.0);
+}
+
 TEST(Dsst, SameFramesGiveIdenticalBoxes) {
   std::vector<Truth> truth;
   for (int i = 0; i < 15; ++i) truth.push_back({cv::Point2d(300 + 1.3 * i, 200 + 0.7 * i), 1.0 + 0.004 * i});
