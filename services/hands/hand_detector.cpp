@@ -94,12 +94,17 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
   }
   // A FRONT hand is in front of the body, not a forearm hanging at the torso's edge: a skin component much
   // taller than wide that reaches below the body centre is dropped, and Alg. 2 looks again (three times).
-  for (int tries = 0; res.kind == HandKind::Front && params_.front_max_upright > 0; ++tries) {
+  for (int tries = 0; res.kind == HandKind::Front && (params_.front_max_upright > 0 || params_.front_max_hand_areas > 0);
+       ++tries) {
     cv::Mat copy = mask_.clone();
     cv::Rect blob;
-    cv::floodFill(copy, res.hand - g.roi.tl(), cv::Scalar(2), &blob, cv::Scalar(), cv::Scalar(), 8);
+    const int area = cv::floodFill(copy, res.hand - g.roi.tl(), cv::Scalar(2), &blob, cv::Scalar(), cv::Scalar(), 8);
     blob += g.roi.tl();
-    if (blob.height <= params_.front_max_upright * blob.width || blob.br().y <= g.body_centre.y) break;
+    const bool hanging = params_.front_max_upright > 0 && blob.height > params_.front_max_upright * blob.width &&
+                         blob.br().y > g.body_centre.y;
+    const bool torso_sized = params_.front_max_hand_areas > 0 &&
+                             area > params_.front_max_hand_areas * static_cast<double>(g.hand_side) * g.hand_side;
+    if (!hanging && !torso_sized) break;
     ++res.upright_dropped;
     if (tries + 1 >= kMaxDroppedCandidates) {
       res = HandResult{};
@@ -120,10 +125,10 @@ void HandDetector::erase_component(const HandGeometry& g, cv::Point pixel) {
   cv::floodFill(mask_, pixel - g.roi.tl(), cv::Scalar(0), nullptr, cv::Scalar(), cv::Scalar(), 8);
 }
 
-cv::Rect HandDetector::torso_rect(const HandGeometry& g) const {
+cv::Rect torso_rect(const HandsParams& p, const HandGeometry& g) {
   // Inside the (clipped) box; empty when the body centre lies above the face rows or the box's top (a box
   // mostly above the frame): cv::Rect(Point, Point) would swap the corners and reach rows above the image.
-  const int inset = static_cast<int>(std::lround(params_.torso_inset_ratio * g.box.width));
+  const int inset = static_cast<int>(std::lround(p.torso_inset_ratio * g.box.width));
   const int x0 = g.box.x + inset, x1 = g.box.br().x - inset;
   const int y0 = std::max(g.box.y, g.face_rows_end), y1 = std::min(g.box.br().y, static_cast<int>(g.body_centre.y));
   if (x1 <= x0 || y1 <= y0) return {};
@@ -134,7 +139,7 @@ void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g
   // The clothing of the torso (torso_rect): a sleeve is the same.
   torso_hist_.assign(kTorsoBins * kTorsoBins * kTorsoBins, 0);
   torso_pixels_ = 0;
-  const cv::Rect t = torso_rect(g);
+  const cv::Rect t = torso_rect(params_, g);
   for (int y = t.y; y < t.br().y; ++y) {
     const uint8_t* p = bgr.ptr<uint8_t>(y) + 3 * t.x;
     for (int x = t.x; x < t.br().x; ++x, p += 3) {
@@ -166,7 +171,7 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const HandGeometry& g, cv::Poin
   if (!cv::Rect(0, 0, arm_.cols, arm_.rows).contains(seed) || !arm_.at<uint8_t>(seed)) return false;
   cv::floodFill(arm_, seed, cv::Scalar(2), nullptr, cv::Scalar(), cv::Scalar(), 8);
   // Reached the torso itself, not the box's margins beside it (a skin-coloured wall there touches the box).
-  const cv::Rect torso = torso_rect(g) & g.roi;
+  const cv::Rect torso = torso_rect(params_, g) & g.roi;
   if (torso.empty()) return false;
   const cv::Mat band = arm_(torso - g.roi.tl());
   for (int y = 0; y < band.rows; ++y) {

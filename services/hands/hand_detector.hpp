@@ -47,6 +47,9 @@ struct HandGeometry {
 
 // user_box: x, y (top-left), width, height in pixels. image: the frame's size.
 HandGeometry hand_geometry(const HandsParams& params, const cv::Rect2f& user_box, cv::Size image);
+// The torso (its clothing): between the face rows and the body centre, the box's width less torso_inset_ratio
+// each side; empty when the box leaves none in the image.
+cv::Rect torso_rect(const HandsParams& params, const HandGeometry& geometry);
 
 struct HandResult {
   HandKind kind = HandKind::None;
@@ -87,8 +90,6 @@ class HandDetector {
   int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry);
   // Clears the skin component of mask_ holding an image pixel (a candidate this frame will not take).
   void erase_component(const HandGeometry& geometry, cv::Point pixel);
-  // The torso: between the face rows and the body centre, the box's width less torso_inset_ratio each side.
-  cv::Rect torso_rect(const HandGeometry& geometry) const;
   void learn_torso_colours(const cv::Mat& bgr, const HandGeometry& geometry);
   // Whether arm-coloured pixels (skin, the torso's clothing colours) join the hand to the torso.
   bool on_an_arm(const cv::Mat& bgr, const HandGeometry& geometry, cv::Point hand);

@@ -40,6 +40,7 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
                                       cv::Point(px(std::ceil(box.br().x + m)), px(std::ceil(box.br().y)))) &
                              cv::Rect(0, 0, bgr.cols, bgr.rows);
     adapter_.learn_scene(bgr, exclude);
+    adapter_.learn_clothing(bgr, torso_rect(p, g));
   }
   return detector_.detect(bgr, box, &adapter_.classifier());
 }

@@ -19,6 +19,11 @@ struct SkinAdaptParams {
   int scene_stride = 4;              //!< the scene is sampled every N-th pixel in x and y
   double scene_margin = 1.2;         //!< the scene is the frame outside the user box grown by this many box widths
                                      //!< (a stretched-out hand there is a small share of the scene's colours)
+  // The user's clothing (the torso of the box): a shirt the table calls skin (orange, peach, pink) is not skin.
+  double clothing_weight = 0.2;      //!< c: share of the torso's colour histogram in P(c|not skin) (0 = off)
+  double clothing_rate = 0.1;        //!< each frame's torso sample blends in at this rate (decay)
+  double clothing_user_level = 0.005; //!< torso pixels of the user's skin colours are not clothing: a colour whose
+                                     //!< (smoothed) face histogram is at least this fraction of its peak (a hand in front)
   // The cheek band of the Haar face box: below the eyes, inside the face outline, above the chin.
   double face_band_top = 0.5;        //!< band top, fraction of the face box height
   double face_band_bottom = 0.85;    //!< band bottom, fraction of the face box height
@@ -39,6 +44,9 @@ struct SkinAdaptParams {
     v("scene_rate", scene_rate, 0.0, 1.0, "blend rate of each frame's scene sample (decay)");
     v("scene_stride", scene_stride, 1, 64, "scene sampled every N-th pixel in x and y");
     v("scene_margin", scene_margin, 0.0, 10.0, "scene = frame outside the user box grown by this many box widths");
+    v("clothing_weight", clothing_weight, 0.0, 1.0, "share of the user's torso colours in P(colour|not skin) (0 = off)");
+    v("clothing_rate", clothing_rate, 0.0, 1.0, "blend rate of each frame's torso sample (decay)");
+    v("clothing_user_level", clothing_user_level, 0.0, 1.0, "torso colours at this fraction of the face histogram's peak are the user's skin, not clothing");
     v("face_band_top", face_band_top, 0.0, 1.0, "cheek band top, fraction of face box height");
     v("face_band_bottom", face_band_bottom, 0.0, 1.0, "cheek band bottom, fraction of face box height");
     v("face_band_side", face_band_side, 0.0, 0.5, "cheek band inset each side, fraction of face box width");
@@ -49,6 +57,9 @@ struct SkinAdaptParams {
     v("smoothing_sigma", smoothing_sigma, 0.0, 8.0, "Gaussian blur of the learnt histograms, bins");
   }
   void check(const ParamCheck& c) const {
+    c.require(scene_weight + clothing_weight <= 1.0, "clothing_weight",
+              "scene_weight + clothing_weight = " + ParamWriter::format_number(scene_weight + clothing_weight, false) +
+                  " leaves the table's non-skin class a negative share (at most 1)");
     c.require(face_band_top < face_band_bottom, "face_band_top",
               ParamWriter::format_number(face_band_top, false) + " must be above (less than) face_band_bottom " +
                   ParamWriter::format_number(face_band_bottom, false));
@@ -119,6 +130,8 @@ struct HandsParams {
                                      //!< are the clothing's, and an arm must reach it (the box's margins are scenery)
   double front_max_upright = 2.5;    //!< Alg. 2: a skin component this many times taller than wide that reaches
                                      //!< below the body centre is a hanging forearm, not a hand in front (0 = off)
+  double front_max_hand_areas = 4.0; //!< Alg. 2: a skin component larger than this many hand squares is the torso
+                                     //!< (an orange shirt, a bare chest), not a hand in front of it (0 = off)
   bool needs_body_centre = true;  //!< while p_bc (and the hand square around it) is out of the image (the drone high
                                   //!< and close, the hips below the frame): Alg. 2 judges no hand in front (a resting
                                   //!< hand at the bottom edge is "higher"), and Alg. 1 no hand below the shoulders
@@ -154,6 +167,7 @@ struct HandsParams {
     v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
     v("torso_inset_ratio", torso_inset_ratio, 0.0, 0.45, "torso = box less this many box widths each side (arm_connected; ours)");
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
+    v("front_max_hand_areas", front_max_hand_areas, 0.0, 1000.0, "Alg. 2: skin component of more hand squares is the torso, dropped (0 = off; ours)");
     v("needs_body_centre", needs_body_centre, "body centre out of the image: no FRONT hand, no OUT hand below the shoulders cut by the border (ours)");
     v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }

@@ -3,10 +3,12 @@
 //                                                   (the cheek band of the face box, pixels the table already
 //                                                   calls likely skin), a = adapt.user_weight: it only adds,
 //                                                   so a wrong face cannot make the user's hands non-skin
-//   P(c|other) = (1 - b) P_table(c|not) + b S(c)    S: the scene, pixels outside the hands' search rectangle,
-//                                                   with decay, b <= adapt.scene_weight
+//   P(c|other) = (1 - b - k) P_table(c|not)          S: the scene, pixels outside the hands' search rectangle,
+//                + b S(c) + k C(c)                  with decay, b <= adapt.scene_weight; C: the user's clothing,
+//                                                   the torso of the box, with decay, k <= adapt.clothing_weight
 //   skin iff P(c|skin) P(skin) / (P(c|skin) P(skin) + P(c|other) P(not)) > skin.threshold  (Bayes, as Jones & Rehg)
-// so a wall colour that is everywhere around the user stops being skin and the user's own tone stays skin.
+// so a wall colour that is everywhere around the user stops being skin, an orange shirt is the shirt, and the
+// user's own tone stays skin.
 // The table is the floor: the user's histogram only adds skin colours, and the scene's share is bounded by b,
 // so one bad face or one odd frame cannot take the model over.
 // State depends only on the frames, boxes and faces given; no clock.
@@ -32,6 +34,8 @@ class SkinAdapter {
   void learn_user(const cv::Mat& bgr, const cv::Rect2f& face);
   // Learns the scene from every adapt.scene_stride-th pixel of bgr outside `exclude` (the search rectangle).
   void learn_scene(const cv::Mat& bgr, const cv::Rect& exclude);
+  // Learns the user's clothing from every adapt.scene_stride-th pixel of bgr inside `torso`.
+  void learn_clothing(const cv::Mat& bgr, const cv::Rect& torso);
   // Forgets both (the trained table alone).
   void reset();
 
@@ -40,6 +44,7 @@ class SkinAdapter {
 
   int64_t user_samples() const { return user_samples_; }
   int64_t scene_samples() const { return scene_samples_; }
+  int64_t clothing_samples() const { return clothing_samples_; }
   //! Fraction of colour bins whose decision differs from the trained table's (after the last rebuild).
   double changed_fraction() const { return changed_fraction_; }
 
@@ -50,8 +55,13 @@ class SkinAdapter {
   SkinParams p_;
   SkinModel prior_;
   SkinClassifier prior_classifier_, adapted_;
-  std::vector<double> user_, scene_, sample_;
-  int64_t user_samples_ = 0, scene_samples_ = 0;
+  // Every adapt.scene_stride-th pixel of bgr inside r (or outside it) into sample_, but for bins flagged in skip;
+  // their number.
+  double sample_pixels(const cv::Mat& bgr, const cv::Rect& r, bool inside, const std::vector<uint8_t>* skip = nullptr);
+
+  std::vector<double> user_, scene_, clothing_, sample_;
+  std::vector<uint8_t> user_colour_;  // per bin: one of the user's skin colours (kept out of the clothing)
+  int64_t user_samples_ = 0, scene_samples_ = 0, clothing_samples_ = 0;
   int frames_since_rebuild_ = 0;
   bool dirty_ = false, built_ = false;
   double changed_fraction_ = 0;

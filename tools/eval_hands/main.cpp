@@ -1,6 +1,7 @@
 // gpilot-eval-hands: the hands stage measured apart from the tracker, on
 //   --scenario: a synthetic scenario against the synthetic world's ground truth (synthetic_eval.hpp), or
-//   --coco:     real photos with COCO person keypoints against truth from the keypoints (coco_eval.hpp).
+//   --coco:     real photos with COCO person keypoints against truth from the keypoints (coco_eval.hpp),
+//   --video:    a real clip through tracker, hands and decide, a person who makes no gesture (video_eval.hpp).
 // A thin CLI: the work is in the files next to it.
 #include <cstdio>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "service_cli.hpp"
 #include "synthetic_eval.hpp"
 #include "tracker/tracker_params.hpp"
+#include "video_eval.hpp"
 
 using namespace gpilot;
 
@@ -37,10 +39,16 @@ int main(int argc, char** argv) {
                  "  Scores: OUT found and its angle error (stage hand - p_uc vs truth wrist - p_uc, p_uc = the stage's own\n"
                  "  shoulder centre); FRONT found and HIGH/LOW right (stage hand - p_bc, y < 0 = HIGH, vs truth wrist\n"
                  "  above/below the torso centre); false hands on REST persons; kind accuracy over scored persons.\n"
-                 "  Per-person CSV (--csv), annotated PNGs (--png-dir: skin, hand square, vector, truth arms, person box).\n\n" +
+                 "  Per-person CSV (--csv), annotated PNGs (--png-dir: skin, hand square, vector, truth arms, person box).\n"
+                 "--video FILE|FOLDER --gesture none: a real clip (a video file, or a folder of images such as an OTB/UAV123\n"
+                 "  sequence's img/) of a person who makes no gesture, through the tracker, hands and decide stages as the\n"
+                 "  pipeline runs them (the user from the face search, or --init-box x,y,w,h on the first frame as TRACKER_INIT):\n"
+                 "  frames tracked, hands reported (each a false hand), commands decided (each but HOVER a false command).\n"
+                 "  Per-frame CSV (--csv), the pipeline's overlay as an MP4 (--mp4).\n\n" +
                      keypoint_truth_rules());
   SyntheticEvalOptions syn;
   CocoEvalOptions coco;
+  VideoEvalOptions video;
   std::string box = "annotation", png_dir, csv_path;
   bool json = false;
   auto& app = cli.app();
@@ -55,6 +63,14 @@ int main(int argc, char** argv) {
   app.add_option("--png-dir", png_dir, "folder for annotated PNGs (synthetic default eval_hands_png; COCO: none unless given; '' = none)");
   app.add_option("--csv", csv_path, "write one line per frame (synthetic) or per person (COCO) to this file");
   app.add_flag("--json", json, "print one JSON object on stdout");
+  auto* video_opt = app.add_option("--video", video.source, "real-clip mode: a video file or a folder of images")->check(CLI::ExistingPath);
+  auto* gesture_opt = app.add_option("--gesture", video.gesture, "video mode: what the person does in the whole clip")
+                          ->check(CLI::IsMember({"none"}));
+  auto* fps_opt = app.add_option("--fps", video.fps, "video mode: frame rate of an image folder (default 25)")->check(CLI::PositiveNumber);
+  auto* init_opt = app.add_option("--init-box", video.init_box, "video mode: x,y,w,h of the user on the first frame (default: face search)");
+  auto* mp4_opt = app.add_option("--mp4", video.mp4_path, "video mode: annotated MP4 (the pipeline's overlay)");
+  for (auto* o : {gesture_opt, fps_opt, init_opt, mp4_opt}) o->needs(video_opt);
+  for (auto* o : {scenario_opt, seed_opt, stride_opt, pngs_opt, coco_opt}) o->excludes(video_opt);
   coco_opt->needs(images_opt);
   images_opt->needs(coco_opt);
   box_opt->needs(coco_opt);
@@ -62,6 +78,11 @@ int main(int argc, char** argv) {
 
   return cli.run(argc, argv, [&](const Config& config) {
     const bool png_given = app.count("--png-dir") > 0;
+    if (!video.source.empty()) {
+      video.csv_path = csv_path;
+      video.json = json;
+      return run_video_eval(video, config);
+    }
     if (coco.annotations.empty()) {
       syn.json = json;
       syn.csv_path = csv_path;

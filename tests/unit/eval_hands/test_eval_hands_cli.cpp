@@ -2,6 +2,8 @@
 // ../shared/data/real_people): the counts it reports (persons read, skipped, per truth class) must match the
 // annotations; and the stage's quality on real people may not fall below what it measured when it was made
 // (services/hands/README.md: far from the goals, but no resting person in the shipped subset gets a hand).
+// --video on a real clip of a man who makes no gesture (data/tracking/cf_tracking_sample, CC0): the drone
+// would not move.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -236,6 +238,55 @@ TEST(EvalHandsCli, GivenTheSyntheticModeWhenRunThenItStillScoresAScenario) {
   EXPECT_EQ(j.value("scenario", ""), "tour");
   EXPECT_EQ(j.value("frames", -1), 30);  // 1500 frames, every 50th
   std::cout << "synthetic tour (stride 50): kind accuracy " << j.value("kind_accuracy", -1.0) << "\n";
+}
+
+// The man in data/tracking/cf_tracking_sample (CC0, 53 frames, 640 x 360) stands with his hands at rest in an
+// orange T-shirt the skin table calls skin, pink hydrangeas beside him. The user box: the body box the tracker
+// would make for his ~14 px face (2.75 x 7 face sizes) on his first-frame position (init_rect.txt is his upper
+// body). The paper's stage took the shirt for a hand on every frame and decided FINE on 43 (84.9 %); before the
+// clothing and torso-size rules ours decided CLOSER on 17 (32.1 %); now none.
+const std::string kRestingClip = std::string(GPILOT_SOURCE_DIR) + "/data/tracking/cf_tracking_sample/img";
+
+TEST(EvalHandsCli, GivenARealClipOfAManAtRestWhenRunThenNoCommandWouldMoveTheDrone) {
+  Scratch dir;
+  const ToolRun r = run_tool("--video " + kRestingClip + " --gesture none --init-box 261,50,39,132 --json --csv " + (dir / "f.csv") +
+                                 " --mp4 " + (dir / "f.mp4"),
+                             dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  std::cout << "cf_tracking_sample at rest: " << r.out << "\n";
+  EXPECT_EQ(j.value("frames", -1), 53);
+  EXPECT_EQ(j.value("frames_tracking", -1), 53);
+  EXPECT_EQ(j.value("frames_decided", -1), 53);
+  EXPECT_LE(j.value("moving_command_share", 1.0), 0.20);  // the hands issue's bar for frames without a gesture
+  EXPECT_EQ(j.value("moving_command_frames", -1), 0);     // measured: none
+  std::ifstream csv(dir / "f.csv");
+  EXPECT_EQ(std::count(std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>(), '\n'), 54);
+  EXPECT_GT(fs::file_size(dir / "f.mp4"), 10000u);
+  // The clip does defeat the paper's stage: it flies FINE on the shirt.
+  const ToolRun paper = run_tool("--video " + kRestingClip + " --init-box 261,50,39,132 --json --set hands.skin.adapt.enabled=false "
+                                 "--set hands.max_blob_hand_areas=0 --set hands.reach_ratio=0 --set hands.out_min_angle_deg=0 "
+                                 "--set hands.arm_connected=false --set hands.front_max_upright=0 --set hands.front_max_hand_areas=0 "
+                                 "--set hands.box_from_face=false",
+                                 dir);
+  ASSERT_EQ(paper.code, 0) << paper.err;
+  EXPECT_GE(json::parse(paper.out).value("moving_command_share", 0.0), 0.5);
+}
+
+TEST(EvalHandsCli, GivenABadVideoInputWhenRunThenAClearErrorAndNoCrash) {
+  Scratch dir;
+  ToolRun r = run_tool("--video " + kRestingClip + " --init-box 261,50,-39,132", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("want x,y,w,h"), std::string::npos) << r.err;
+  r = run_tool("--video " + (dir / "missing.mp4"), dir);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("missing.mp4"), std::string::npos) << r.err;
+  fs::create_directories(dir / "empty");
+  r = run_tool("--video " + (dir / "empty"), dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("empty"), std::string::npos) << r.err;
+  r = run_tool("--video " + kRestingClip + " --coco x.json", dir);
+  EXPECT_NE(r.code, 0);
 }
 
 }  // namespace

@@ -91,6 +91,7 @@ TEST_F(RulesTest, SkinInsideTheBoxIsNotMeasuredAsAWall) {
   // GIVEN a bare torso: skin filling the box between the face and legs bands (80 x 72 = 5760 px > 1600)
   cv::Mat frame(kImage, CV_8UC3, kBlue);
   cv::rectangle(frame, cv::Rect(100, 132, 80, 72), kSkin, cv::FILLED);
+  params.front_max_hand_areas = 0;  // (with it, Alg. 2 then drops the torso as no hand: the test above)
   const auto r = on_frame(frame);
   EXPECT_EQ(r.blobs_dropped, 0);
   EXPECT_EQ(r.skin_inside, 80 * 72);
@@ -138,6 +139,25 @@ TEST_F(RulesTest, AForearmHangingAtTheTorsosEdgeIsNotAHandInFront) {
   r = on_frame(frame);
   EXPECT_EQ(r.kind, HandKind::Front);
   EXPECT_LT(r.vector.y, 0);
+  EXPECT_EQ(r.upright_dropped, 0);
+}
+
+TEST_F(RulesTest, ATorsoSizedSkinRegionIsTheShirtNotAHandInFront) {
+  // GIVEN skin 40 x 40 at x 120..159, y 140..179 inside the box (an orange shirt the table calls skin): 1600 px,
+  // 4 hand squares of 20 x 20 exactly -> kept at 4, dropped when one more row is skin (1640 > 1600)
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(120, 140, 40, 41), kSkin, cv::FILLED);
+  auto r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_EQ(r.upright_dropped, 1);
+  params.front_max_hand_areas = 0;  // off: the paper's Alg. 2 takes the shirt for a hand in front
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Front);
+  params.front_max_hand_areas = 4;
+  frame.setTo(kBlue);
+  cv::rectangle(frame, cv::Rect(120, 140, 40, 40), kSkin, cv::FILLED);
+  r = on_frame(frame);
+  EXPECT_EQ(r.kind, HandKind::Front);
   EXPECT_EQ(r.upright_dropped, 0);
 }
 

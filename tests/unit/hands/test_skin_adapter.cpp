@@ -1,7 +1,8 @@
 // The skin model that learns the user (face) and the scene (around the user) on top of the committed table.
 // Colours (B, G, R) and what the committed table says of them (level = P(skin) x 255, threshold 0.75 = 191):
 //   wall (118, 160, 205): 253, a light pine wall the table calls skin;  hand (90, 120, 170): 247;
-//   cheek (40, 48, 164): 134, a red-brown the table is unsure of;      blue (200, 60, 20): ~0.
+//   cheek (40, 48, 164): 134, a red-brown the table is unsure of;      blue (200, 60, 20): ~0;
+//   orange (58, 90, 184): > 191, the T-shirt of the man in data/tracking/cf_tracking_sample.
 #include <filesystem>
 #include <fstream>
 
@@ -16,7 +17,7 @@ using namespace gpilot;
 
 namespace {
 
-const cv::Scalar kWall(118, 160, 205), kHand(90, 120, 170), kCheek(40, 48, 164), kBlue(200, 60, 20);
+const cv::Scalar kWall(118, 160, 205), kHand(90, 120, 170), kCheek(40, 48, 164), kBlue(200, 60, 20), kOrange(58, 90, 184);
 
 bool skin(SkinAdapter& a, const cv::Scalar& c) {
   return a.classifier().is_skin(static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]));
@@ -86,6 +87,35 @@ TEST_F(SkinAdapterTest, ResetGivesTheTableBackAndTheSameInputsGiveTheSameModel) 
   a.reset();
   EXPECT_EQ(a.user_samples() + a.scene_samples(), 0);
   EXPECT_EQ(a.classifier().mask_table(), SkinClassifier(model, params.threshold).mask_table());
+}
+
+TEST_F(SkinAdapterTest, AShirtTheTableCallsSkinIsTheShirtOnceTheUsersSkinIsKnown) {
+  ASSERT_GT(model.level(58, 90, 184), 191);
+  SkinAdapter a(params, model);
+  // GIVEN a user in an orange shirt with a hand of their own skin in front of it, on a blue scene
+  cv::Mat frame(240, 320, CV_8UC3, kBlue);
+  const cv::Rect torso(100, 80, 80, 100);
+  frame(torso).setTo(kOrange);
+  frame(cv::Rect(130, 120, 16, 16)).setTo(kHand);
+  // WHEN the torso is learnt before any face THEN nothing is learnt: the hand in front could be taken for clothing
+  a.learn_clothing(frame, torso);
+  EXPECT_EQ(a.clothing_samples(), 0);
+  EXPECT_TRUE(skin(a, kOrange));
+  // WHEN the face shows the user's skin (the hand's tone) and the torso is learnt
+  frame(cv::Rect(110, 10, 60, 60)).setTo(kHand);
+  a.learn_user(frame, cv::Rect2f(110, 10, 60, 60));
+  a.learn_clothing(frame, torso);
+  // THEN the shirt is no longer skin and the hand still is: its colour was kept out of the clothing
+  EXPECT_EQ(a.clothing_samples(), 20 * 25 - 4 * 4);  // every 4th pixel of the torso but the hand's
+  EXPECT_FALSE(skin(a, kOrange));
+  EXPECT_TRUE(skin(a, kHand));
+  // AND with clothing_weight 0 the shirt stays skin (the rule off)
+  params.adapt.clothing_weight = 0;
+  SkinAdapter off(params, model);
+  off.learn_user(frame, cv::Rect2f(110, 10, 60, 60));
+  off.learn_clothing(frame, torso);
+  EXPECT_EQ(off.clothing_samples(), 0);
+  EXPECT_TRUE(skin(off, kOrange));
 }
 
 TEST_F(SkinAdapterTest, OffItIsTheTable) {
