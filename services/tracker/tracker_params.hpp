@@ -111,9 +111,9 @@ struct DsstParams {
     v("reuse_detection_samples", reuse_detection_samples, "learn from the detection samples (false: sample again, as DSST)");
     v("colour_weight", colour_weight, 0.0, 1.0, "Staple: weight of the colour-histogram response (0: off; Staple 0.3)");
     v("colour_learning_rate", colour_learning_rate, 0.0, 1.0, "Staple: colour histograms' update rate (Staple 0.04)");
-    v("wide_search_psr", wide_search_psr, 0.0, 100.0, "PSR below this: the 8 windows around are searched too, the best taken at this PSR (0: off)");
+    v("wide_search_psr", wide_search_psr, 0.0, 100.0, "PSR below this: the 8 windows around are searched too (0: off)");
     v("wide_search_offset", wide_search_offset, 0.05, 2.0, "wide search: the windows' offset, fraction of the window's side");
-    v("wide_search_accept_psr", wide_search_accept_psr, 0.0, 100.0, "wide search: a window is taken at this PSR at least (and at wide_search_psr)");
+    v("wide_search_accept_psr", wide_search_accept_psr, 0.0, 100.0, "wide search: a window is taken at this PSR at least");
     v("wide_search_accept_share", wide_search_accept_share, 0.0, 10.0, "wide search: ... and at this share of the track's mean PSR of its good frames");
   }
 };
