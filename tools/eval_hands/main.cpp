@@ -40,10 +40,13 @@ int main(int argc, char** argv) {
                  "  shoulder centre); FRONT found and HIGH/LOW right (stage hand - p_bc, y < 0 = HIGH, vs truth wrist\n"
                  "  above/below the torso centre); false hands on REST persons; kind accuracy over scored persons.\n"
                  "  Per-person CSV (--csv), annotated PNGs (--png-dir: skin, hand square, vector, truth arms, person box).\n"
-                 "--video FILE|FOLDER --gesture none: a real clip (a video file, or a folder of images such as an OTB/UAV123\n"
-                 "  sequence's img/) of a person who makes no gesture, through the tracker, hands and decide stages as the\n"
-                 "  pipeline runs them (the user from the face search, or --init-box x,y,w,h on the first frame as TRACKER_INIT):\n"
-                 "  frames tracked, hands reported (each a false hand), commands decided (each but HOVER a false command).\n"
+                 "--video FILE|FOLDER (--gesture none | --truth FILE): a real clip (a video file, or a folder of images such as\n"
+                 "  an OTB/UAV123 sequence's img/) through the tracker, hands and decide stages as the pipeline runs them (the\n"
+                 "  user from the face search, or --init-box x,y,w,h on the first frame as TRACKER_INIT), judged against what\n"
+                 "  the person does: no gesture in the whole clip, or --truth lines 'first,last,GESTURE' (0-based frames,\n"
+                 "  inclusive; REST OUT UP DOWN CLOSER FURTHER; frames outside every range not judged), from --settle-s\n"
+                 "  (0.8) after each change: the right hand (REST none, OUT/UP/DOWN OUT, CLOSER/FURTHER FRONT higher/lower)\n"
+                 "  and command per gesture, a moving command where no gesture is made.\n"
                  "  Per-frame CSV (--csv), the pipeline's overlay as an MP4 (--mp4).\n\n" +
                      keypoint_truth_rules());
   SyntheticEvalOptions syn;
@@ -66,10 +69,14 @@ int main(int argc, char** argv) {
   auto* video_opt = app.add_option("--video", video.source, "real-clip mode: a video file or a folder of images")->check(CLI::ExistingPath);
   auto* gesture_opt = app.add_option("--gesture", video.gesture, "video mode: what the person does in the whole clip")
                           ->check(CLI::IsMember({"none"}));
+  auto* truth_opt = app.add_option("--truth", video.truth_path, "video mode: gesture truth, lines first,last,GESTURE")->check(CLI::ExistingFile);
+  auto* settle_opt = app.add_option("--settle-s", video.settle_s, "video mode: not judged this long after each change, s (default 0.8)")
+                         ->check(CLI::NonNegativeNumber);
+  truth_opt->excludes(gesture_opt);
   auto* fps_opt = app.add_option("--fps", video.fps, "video mode: frame rate of an image folder (default 25)")->check(CLI::PositiveNumber);
   auto* init_opt = app.add_option("--init-box", video.init_box, "video mode: x,y,w,h of the user on the first frame (default: face search)");
   auto* mp4_opt = app.add_option("--mp4", video.mp4_path, "video mode: annotated MP4 (the pipeline's overlay)");
-  for (auto* o : {gesture_opt, fps_opt, init_opt, mp4_opt}) o->needs(video_opt);
+  for (auto* o : {gesture_opt, truth_opt, settle_opt, fps_opt, init_opt, mp4_opt}) o->needs(video_opt);
   for (auto* o : {scenario_opt, seed_opt, stride_opt, pngs_opt, coco_opt}) o->excludes(video_opt);
   coco_opt->needs(images_opt);
   images_opt->needs(coco_opt);
