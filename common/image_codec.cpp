@@ -15,10 +15,12 @@ namespace gpilot {
 
 namespace {
 
-// One TurboJPEG decompressor per thread, made on first use: making one allocates libjpeg's state (~30 kB).
-tjhandle jpeg_decompressor() {
+// One TurboJPEG handle of each kind per thread, made on first use: making one allocates libjpeg's state (~30 kB),
+// and capture encodes, every stage decodes, every frame.
+template <tjhandle (*Make)()>
+tjhandle thread_jpeg_handle() {
   struct Handle {
-    tjhandle h = tjInitDecompress();
+    tjhandle h = Make();
     ~Handle() {
       if (h) tjDestroy(h);
     }
@@ -27,17 +29,8 @@ tjhandle jpeg_decompressor() {
   return handle.h;
 }
 
-// One TurboJPEG compressor per thread (capture encodes every frame), made on first use.
-tjhandle jpeg_compressor() {
-  struct Handle {
-    tjhandle h = tjInitCompress();
-    ~Handle() {
-      if (h) tjDestroy(h);
-    }
-  };
-  thread_local Handle handle;
-  return handle.h;
-}
+tjhandle jpeg_decompressor() { return thread_jpeg_handle<tjInitDecompress>(); }
+tjhandle jpeg_compressor() { return thread_jpeg_handle<tjInitCompress>(); }
 
 }  // namespace
 
