@@ -6,6 +6,7 @@
 
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/hand_obs_t.hpp"
+#include "hands/hand_square.hpp"
 
 namespace gpilot {
 namespace {
@@ -33,6 +34,14 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   e.kind = hand_obs_t::KIND_NONE;
   e.mode = gesture_cmd_t::MODE_HOVER;
   const float x1 = box.x + box.width, y1 = box.y + box.height;
+  // As the stage (hands.needs_body_centre): with the body centre out of view (the drone high and close, the hips
+  // below the frame) no hand in front is judged, nor a hand below the shoulders whose square the border cuts.
+  const int side = hand_square_side(hp, box.width, image), half = side / 2;
+  const bool cut_body = hp.needs_body_centre && !square_in_view(e.body_centre, side, image);
+  const auto border_cut = [&](const cv::Point2f& p) {
+    return cut_body && p.y > e.shoulder_centre.y &&
+           (p.x - half < 0 || p.x - half + side > image.width || p.y - half + side > image.height);
+  };
 
   // Alg. 1: a hand outside the box (but inside the search rectangle and the image).
   const float rx0 = static_cast<float>(std::max(0.0, box.x - hp.roi_extend_side * box.width));
@@ -41,7 +50,7 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   const float ry1 = static_cast<float>(std::min<double>(image.height, y1 + hp.roi_extend_bottom * box.height));
   double best = -std::numeric_limits<double>::infinity();
   for (const auto& p : hands) {
-    if (inside(p, box.x, box.y, x1, y1) || !inside(p, rx0, ry0, rx1, ry1)) continue;
+    if (inside(p, box.x, box.y, x1, y1) || !inside(p, rx0, ry0, rx1, ry1) || border_cut(p)) continue;
     const double score = std::fabs(e.shoulder_centre.x - p.x) + hp.lambda2 * (e.shoulder_centre.y - p.y);
     if (score > best) {
       best = score;
@@ -63,6 +72,7 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   }
 
   // Alg. 2: a hand inside the box, in the band left after removing face/neck and legs, near the midline.
+  if (cut_body) return e;
   const float band0 = static_cast<float>(box.y + hp.face_remove_ratio * box.height);
   const float band1 = static_cast<float>(y1 - hp.legs_remove_ratio * box.height);
   double nearest = std::numeric_limits<double>::infinity();

@@ -7,7 +7,9 @@
 //   user box, and that of Alg. 2 to the smallest |p_bc.x - p.x| among the hands inside it;
 // - Alg. 1 sees a hand outside the box only inside the search rectangle (hands.roi_extend_*) and the image;
 // - Alg. 2 does not see a hand whose centre lies in the removed face/neck or legs band (hands.*_remove_ratio);
-// - the forearm's skin is ignored (the real Alg. 1 may pick a point on a raised forearm, not the hand).
+// - the forearm's skin is ignored (the real Alg. 1 may pick a point on a raised forearm, not the hand);
+// - as the stage (hands.needs_body_centre), while the body centre's hand square is out of the image no hand in
+//   front is seen, nor a hand below the shoulders whose square the border cuts: such a gesture is not in view.
 // The command is what Alg. 3 gives once the buffers are full of this frame's observation: OUT -> FINE, or
 // UP/DOWN when |y| > |λ4 x| (x then 0); FRONT -> CLOSER (y < 0, z = +1) or FURTHER (y > 0, z = -1); else HOVER.
 #pragma once

@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "hands/hand_square.hpp"
+
 namespace gpilot {
 
 const char* hand_kind_name(HandKind k) {
@@ -37,14 +39,12 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   // a kernel of gigabytes (hands stalled 5.4 s, +545 MB).
   const double image_side = std::max(image.width, image.height);
   g.open_radius = static_cast<int>(std::lround(std::min(p.skin.open_radius_ratio * w, image_side)));
-  g.hand_side = std::max(1, static_cast<int>(std::lround(std::min(w * p.hand_square_ratio, 2 * image_side + 1))));
+  g.hand_side = hand_square_side(p, w, image);
   const auto row = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
   g.face_rows_end = row(y + p.face_remove_ratio * h);
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.image = image;
-  const double half = g.hand_side / 2.0;
-  g.body_centre_in_view = g.body_centre.x - half >= 0 && g.body_centre.y - half >= 0 && g.body_centre.x + half <= image.width &&
-                          g.body_centre.y + half <= image.height;
+  g.body_centre_in_view = square_in_view(g.body_centre, g.hand_side, image);
   g.valid = g.box.width >= 4 && g.box.height >= 4;
   return g;
 }

@@ -22,7 +22,7 @@ struct SkinAdaptParams {
   // The user's clothing (the torso of the box): a shirt the table calls skin (orange, peach, pink) is not skin.
   double clothing_weight = 0.2;      //!< c: share of the torso's colour histogram in P(c|not skin) (0 = off)
   double clothing_rate = 0.1;        //!< each frame's torso sample blends in at this rate (decay)
-  double clothing_user_level = 0.005; //!< torso pixels of the user's skin colours are not clothing: a colour whose
+  double clothing_user_level = 0.0001; //!< torso pixels of the user's skin colours are not clothing: a colour whose
                                      //!< (smoothed) face histogram is at least this fraction of its peak (a hand in front)
   // The cheek band of the Haar face box: below the eyes, inside the face outline, above the chin.
   double face_band_top = 0.5;        //!< band top, fraction of the face box height

@@ -84,5 +84,22 @@ TEST(GestureTruth, FrontHandOutsideTheGateOrTheBandIsNothing) {
   EXPECT_EQ(run({150, 80}).kind, hand_obs_t::KIND_NONE);   // in the removed face band (top 0.2 = 90)
 }
 
+TEST(GestureTruth, WithTheBodyCentreOutOfViewAHandInFrontOrCutByTheBorderIsNotSeen) {
+  // GIVEN the box 100 x 200 at (100, 380): p_bc = (150, 480), its 25 px hand square half below the 480 px image
+  // (the drone high and close, the hips below the frame), p_uc = (150, 420)
+  const cv::Rect2f low(100, 380, 100, 200);
+  const cv::Point2f in_front(150, 430), cut_out(40, 475), rest(180, 560);
+  TruthRules rules;
+  // THEN a hand in front is not seen (the stage judges none), nor a hand below the shoulders the bottom cuts
+  EXPECT_EQ(expected_command(low, {in_front, rest}, kImage, rules).mode, gesture_cmd_t::MODE_HOVER);
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules).kind, hand_obs_t::KIND_NONE);
+  // AND a raised hand above the shoulders still is
+  EXPECT_EQ(expected_command(low, {cv::Point2f(40, 400), rest}, kImage, rules).kind, hand_obs_t::KIND_OUT);
+  // WHEN the rule is off (hands.needs_body_centre false) THEN the paper's rules see both
+  rules.hands.needs_body_centre = false;
+  EXPECT_EQ(expected_command(low, {in_front, rest}, kImage, rules).mode, gesture_cmd_t::MODE_CLOSER);
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules).kind, hand_obs_t::KIND_OUT);
+}
+
 }  // namespace
 }  // namespace gpilot

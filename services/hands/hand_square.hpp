@@ -1,0 +1,28 @@
+// The hand square of a user box, and whether the body centre with a hand square around it lies in the image.
+// Shared by the hands stage (hand_geometry) and the synthetic world's ground truth (gesture_truth.hpp): both
+// must agree on when a hand in front can be judged (hands.needs_body_centre) and which hands the border cuts.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/core.hpp>
+
+#include "hands/hands_params.hpp"
+
+namespace gpilot {
+
+// Side in pixels: hand_square_ratio x box width, at least 1, capped at what the image holds (beyond that a larger
+// square changes nothing, while a hostile 1e6 px box would size one of gigabytes).
+inline int hand_square_side(const HandsParams& p, double box_width, cv::Size image) {
+  const double image_side = std::max(image.width, image.height);
+  return std::max(1, static_cast<int>(std::lround(std::min(box_width * p.hand_square_ratio, 2 * image_side + 1))));
+}
+
+// The square of side `side` centred at p lies wholly in the image.
+inline bool square_in_view(cv::Point2f p, int side, cv::Size image) {
+  const double half = side / 2.0;
+  return p.x - half >= 0 && p.y - half >= 0 && p.x + half <= image.width && p.y + half <= image.height;
+}
+
+}  // namespace gpilot
