@@ -36,11 +36,10 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   const float x1 = box.x + box.width, y1 = box.y + box.height;
   // As the stage (hands.needs_body_centre): with the body centre out of view (the drone high and close, the hips
   // below the frame) no hand in front is judged, nor a hand below the shoulders whose square the border cuts.
-  const int side = hand_square_side(hp, box.width, image), half = side / 2;
+  const int side = hand_square_side(hp, box.width, image);
   const bool cut_body = hp.needs_body_centre && !square_in_view(e.body_centre, side, image);
   const auto border_cut = [&](const cv::Point2f& p) {
-    return cut_body && p.y > e.shoulder_centre.y &&
-           (p.x - half < 0 || p.x - half + side > image.width || p.y - half + side > image.height);
+    return cut_body && p.y > e.shoulder_centre.y && square_cut_by_side_or_bottom(p, side, image);
   };
 
   // Alg. 1: a hand outside the box (but inside the search rectangle and the image).

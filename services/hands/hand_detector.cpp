@@ -241,9 +241,8 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
   // With the body centre out of the image (hips below the frame), a hand below the shoulder line whose square
   // the image border cuts is not judged: a resting hand or scenery at the cut edge, whose end is out of view.
   const bool cut_body = params_.needs_body_centre && !g.body_centre_in_view;
-  const int img_w = g.image.width, img_h = g.image.height;
   auto out_candidate = [&](int ix, int iy) {
-    if (cut_body && iy > ucy && (ix - half < 0 || ix - half + side > img_w || iy - half + side > img_h)) return false;
+    if (cut_body && iy > ucy && square_cut_by_side_or_bottom(cv::Point2f(ix, iy), side, g.image)) return false;
     const double sx = ix < ucx ? ucx - shoulder_dx : ucx + shoulder_dx;
     const double dx = std::abs(ix - sx), dy = iy - ucy;
     if (params_.reach_ratio > 0 && dx * dx + dy * dy > reach2) return false;

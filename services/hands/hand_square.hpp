@@ -25,4 +25,11 @@ inline bool square_in_view(cv::Point2f p, int side, cv::Size image) {
   return p.x - half >= 0 && p.y - half >= 0 && p.x + half <= image.width && p.y + half <= image.height;
 }
 
+// The square of side `side` at p, as F_skin counts it ([p - side/2, p - side/2 + side)), crosses the image's left,
+// right or bottom border: below the shoulders, while the body centre is out of view, no hand is judged there.
+inline bool square_cut_by_side_or_bottom(cv::Point2f p, int side, cv::Size image) {
+  const int half = side / 2;
+  return p.x - half < 0 || p.x - half + side > image.width || p.y - half + side > image.height;
+}
+
 }  // namespace gpilot

@@ -16,6 +16,7 @@ void SkinAdapter::reset() {
   user_.clear();
   scene_.clear();
   clothing_.clear();
+  user_smooth_.clear();
   user_colour_.clear();
   user_samples_ = scene_samples_ = clothing_samples_ = 0;
   frames_since_rebuild_ = 0;
@@ -54,11 +55,12 @@ void SkinAdapter::learn_user(const cv::Mat& bgr, const cv::Rect2f& face) {
   if (n < a.min_face_samples) return;  // too small or not a face: nothing learnt
   blend(user_, sample_, n, a.user_rate, user_samples_ == 0);
   user_samples_ += static_cast<int64_t>(n);
+  // Smoothed once per face (about once a second), not at every rebuild.
+  user_smooth_ = smooth_histogram(user_, prior_.bins(), a.smoothing_sigma);
   if (a.clothing_weight > 0) {
-    const std::vector<double> smooth = smooth_histogram(user_, prior_.bins(), a.smoothing_sigma);
-    const double level = a.clothing_user_level * *std::max_element(smooth.begin(), smooth.end());
-    user_colour_.assign(smooth.size(), 0);
-    for (size_t i = 0; i < smooth.size(); ++i) user_colour_[i] = smooth[i] > level ? 1 : 0;
+    const double level = a.clothing_user_level * *std::max_element(user_smooth_.begin(), user_smooth_.end());
+    user_colour_.assign(user_smooth_.size(), 0);
+    for (size_t i = 0; i < user_smooth_.size(); ++i) user_colour_[i] = user_smooth_[i] > level ? 1 : 0;
   }
   dirty_ = true;
 }
@@ -117,7 +119,7 @@ void SkinAdapter::rebuild() {
   dirty_ = false;
   const auto& a = p_.adapt;
   const int bins = prior_.bins();
-  const std::vector<double> user = user_.empty() ? user_ : smooth_histogram(user_, bins, a.smoothing_sigma);
+  const std::vector<double>& user = user_smooth_;
   const std::vector<double> scene = scene_.empty() ? scene_ : smooth_histogram(scene_, bins, a.smoothing_sigma);
   const std::vector<double> clothing = clothing_.empty() ? clothing_ : smooth_histogram(clothing_, bins, a.smoothing_sigma);
   const double wu = user.empty() ? 0.0 : a.user_weight, ws = scene.empty() ? 0.0 : a.scene_weight;

@@ -60,6 +60,7 @@ class SkinAdapter {
   double sample_pixels(const cv::Mat& bgr, const cv::Rect& r, bool inside, const std::vector<uint8_t>* skip = nullptr);
 
   std::vector<double> user_, scene_, clothing_, sample_;
+  std::vector<double> user_smooth_;   // user_ smoothed (smoothing_sigma), as rebuild() uses it
   std::vector<uint8_t> user_colour_;  // per bin: one of the user's skin colours (kept out of the clothing)
   int64_t user_samples_ = 0, scene_samples_ = 0, clothing_samples_ = 0;
   int frames_since_rebuild_ = 0;

@@ -114,9 +114,8 @@ struct GestureScore {
   int64_t judged = 0, hand_right = 0, command_right = 0, moving = 0;
 };
 
-const char* kind_name(int8_t k) {
-  return k == hand_obs_t::KIND_OUT ? "OUT" : k == hand_obs_t::KIND_FRONT ? "FRONT" : "NONE";
-}
+// HAND_OBS's kind by the stage's own names (HandKind has hand_obs_t::KIND_*'s values).
+const char* kind_name(int8_t k) { return hand_kind_name(static_cast<HandKind>(k)); }
 
 }  // namespace
 
