@@ -64,16 +64,25 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     return r;
   }
   (skin ? *skin : skin_).classify(bgr(g.roi), mask_);
+  // The arm test (on_an_arm) reads the skin before the opening: a far user's arm is 2-3 px thick, and the
+  // opening that clears speckles from the hand candidates cut it from the hand on some frames and not others
+  // (an OUT lost for 3 s at 9.8 m).
+  const bool keep_unopened = params_.arm_connected && g.open_radius > 0;
+  if (keep_unopened) mask_.copyTo(unopened_);
   if (g.open_radius > 0) {
     const int side = 2 * g.open_radius + 1;
     cv::morphologyEx(mask_, mask_, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
   }
+  cv::Mat& arm_skin = keep_unopened ? unopened_ : mask_;
   // Face/neck and legs/feet: rows of the user box (box columns only) cleared by the preset ratios.
   const cv::Rect top(g.box.x, g.box.y, g.box.width, std::max(0, g.face_rows_end - g.box.y));
   const cv::Rect bottom(g.box.x, g.legs_rows_begin, g.box.width, std::max(0, g.box.br().y - g.legs_rows_begin));
   for (const cv::Rect& r : {top & g.box, bottom & g.box})
-    if (!r.empty()) mask_(r - g.roi.tl()).setTo(0);
-  const int dropped = drop_large_blobs(mask_, g);
+    if (!r.empty()) {
+      mask_(r - g.roi.tl()).setTo(0);
+      if (keep_unopened) unopened_(r - g.roi.tl()).setTo(0);
+    }
+  const int dropped = drop_large_blobs(mask_, g, keep_unopened ? &unopened_ : nullptr);
   HandResult res = run(mask_, g.roi.tl(), g);
   // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
   // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
@@ -81,7 +90,7 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
   bool torso_known = false;
   while (res.kind == HandKind::Out && params_.arm_connected) {
     if (!torso_known) learn_torso_colours(bgr, g), torso_known = true;
-    if (on_an_arm(bgr, g, res.hand)) break;
+    if (on_an_arm(bgr, arm_skin, g, res.hand)) break;
     if (++armless < kMaxDroppedCandidates) {
       erase_component(g, res.hand);
     } else {
@@ -149,16 +158,17 @@ void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g
   }
 }
 
-bool HandDetector::on_an_arm(const cv::Mat& bgr, const HandGeometry& g, cv::Point hand) {
-  // Arm-coloured pixels of the search rectangle: the skin mask as the detector left it (a skin-coloured wall
-  // dropped, so it cannot join a dome to the user), or a colour with >= 0.5 % of the torso's clothing; closed
-  // by the arm radius so a watch or a shadow at the wrist does not cut the arm.
+bool HandDetector::on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const HandGeometry& g, cv::Point hand) {
+  // Arm-coloured pixels of the search rectangle: the skin (a skin-coloured wall dropped, so it cannot join a
+  // dome to the user), or a colour with >= 0.5 % of the torso's clothing; closed by the arm radius so a watch or
+  // a shadow at the wrist does not cut the arm. Candidates erased before this one were joined to no torso, so
+  // they join no other hand to it either.
   const cv::Mat roi = bgr(g.roi);
   arm_.create(roi.size(), CV_8UC1);
   const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / 200);
   for (int y = 0; y < roi.rows; ++y) {
     const uint8_t* p = roi.ptr<uint8_t>(y);
-    const uint8_t* m = mask_.ptr<uint8_t>(y);
+    const uint8_t* m = skin.ptr<uint8_t>(y);
     uint8_t* a = arm_.ptr<uint8_t>(y);
     for (int x = 0; x < roi.cols; ++x, p += 3)
       a[x] = m[x] || torso_hist_[static_cast<size_t>(torso_bin(p))] >= min_count ? 1 : 0;
@@ -182,7 +192,7 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const HandGeometry& g, cv::Poin
   return false;
 }
 
-int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g) {
+int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g, cv::Mat* also) {
   if (params_.max_blob_hand_areas <= 0 || mask.empty()) return 0;
   // Measured outside the user box only: a wall or a wooden cabinet beside the user is skin-coloured there,
   // while a bare arm reaching out leaves only its forearm and hand outside (a bare torso is Alg. 2's matter).
@@ -204,9 +214,13 @@ int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g) {
   if (!dropped) return 0;
   for (int y = 0; y < mask.rows; ++y) {
     uint8_t* m = mask.ptr<uint8_t>(y);
+    uint8_t* a = also ? also->ptr<uint8_t>(y) : nullptr;
     const int32_t* l = labels_.ptr<int32_t>(y);
     for (int x = 0; x < mask.cols; ++x)
-      if (drop[static_cast<size_t>(l[x])]) m[x] = 0;
+      if (drop[static_cast<size_t>(l[x])]) {
+        m[x] = 0;
+        if (a) a[x] = 0;
+      }
   }
   return dropped;
 }
@@ -286,10 +300,15 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
     res.vector = cv::Point2f(static_cast<float>(p.x) - ref.x, static_cast<float>(p.y) - ref.y);
     res.hand_box = cv::Rect(p.x - half, p.y - half, side, side);
   };
-  if (res.skin_outside > params_.out_min_skin) {
+  // The paper's pixel counts suit a user a few metres away; a far user's hand fills less of them.
+  const auto min_skin = [&](int paper) {
+    const double square = params_.min_skin_square_share * side * side;
+    return params_.min_skin_square_share > 0 && square < paper ? static_cast<int>(square) : paper;
+  };
+  if (res.skin_outside > min_skin(params_.out_min_skin)) {
     set(HandKind::Out, p_out, f_out, g.shoulder_centre);
   } else if (res.skin_inside > 0 && std::abs(bcx - p_front.x) < params_.front_gate_ratio * g.width &&
-             f_front > params_.front_min_skin) {
+             f_front > min_skin(params_.front_min_skin)) {
     if (cut_body) res.front_out_of_view = true;
     else set(HandKind::Front, p_front, f_front, g.body_centre);
   }

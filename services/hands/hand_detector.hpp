@@ -87,12 +87,14 @@ class HandDetector {
 
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
-  int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry);
+  // Clears skin components too large to be a hand from mask01, and the same pixels from `also` if given.
+  int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry, cv::Mat* also = nullptr);
   // Clears the skin component of mask_ holding an image pixel (a candidate this frame will not take).
   void erase_component(const HandGeometry& geometry, cv::Point pixel);
   void learn_torso_colours(const cv::Mat& bgr, const HandGeometry& geometry);
-  // Whether arm-coloured pixels (skin, the torso's clothing colours) join the hand to the torso.
-  bool on_an_arm(const cv::Mat& bgr, const HandGeometry& geometry, cv::Point hand);
+  // Whether arm-coloured pixels (`skin` over the search rectangle, the torso's clothing colours) join the
+  // hand to the torso.
+  bool on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const HandGeometry& geometry, cv::Point hand);
   static int torso_bin(const uint8_t* bgr) { return ((bgr[0] >> 4) * kTorsoBins + (bgr[1] >> 4)) * kTorsoBins + (bgr[2] >> 4); }
 
   static constexpr int kTorsoBins = 16;             // per channel, for the clothing colours
@@ -100,7 +102,7 @@ class HandDetector {
 
   HandsParams params_;
   SkinClassifier skin_;
-  cv::Mat mask_, integral_, labels_, arm_;
+  cv::Mat mask_, unopened_, integral_, labels_, arm_;
   std::vector<int64_t> torso_hist_;
   int64_t torso_pixels_ = 0;
   cv::Rect last_roi_;

@@ -21,16 +21,16 @@ const cv::Scalar kSkin(90, 120, 170), kBlue(200, 60, 20);  // B, G, R: the commi
 struct RulesTest : ::testing::Test {
   HandsParams params;
   cv::Mat mask = cv::Mat::zeros(kImage, CV_8UC1);
-  HandResult on_mask() {
+  HandResult on_mask(const cv::Rect2f& box = kBox) {
     SkinHistogram h(2);
     h.add(0, 0, 0, true);
     h.add(255, 255, 255, false);
     HandDetector d(params, SkinClassifier(SkinModel::train(h, {}), 0.5));
-    return d.detect_on_mask(mask, {0, 0}, hand_geometry(params, kBox, kImage));
+    return d.detect_on_mask(mask, {0, 0}, hand_geometry(params, box, kImage));
   }
-  HandResult on_frame(const cv::Mat& frame) {
+  HandResult on_frame(const cv::Mat& frame, const cv::Rect2f& box = kBox) {
     HandDetector d(params, SkinClassifier(SkinModel::load(resolve_project_path(params.skin.model)), params.skin.threshold));
-    return d.detect(frame, kBox);
+    return d.detect(frame, box);
   }
 };
 
@@ -257,4 +257,45 @@ TEST_F(RulesTest, ABoxMostlyAboveTheFrameHasNoTorsoAndNoArm) {
   params.arm_connected = false;
   HandDetector plain(params, SkinClassifier(SkinModel::load(resolve_project_path(params.skin.model)), params.skin.threshold));
   EXPECT_EQ(plain.detect(frame, cv::Rect2f(100, -100, 80, 160)).kind, HandKind::Out);
+}
+
+// A user 10 m away (the e2e `far` run): box (150, 150, 30, 77), hand square round(7.5) = 8 px, p_uc (165, 165.4),
+// p_bc (165, 188.5), torso x 156..173 (inset round(6)), rows 165..188, search rectangle from x 114, skin opening
+// radius round(0.75) = 1 (3x3), arm closing radius 1.
+const cv::Rect2f kFarBox(150, 150, 30, 77);
+
+TEST_F(RulesTest, AFarUsersSmallHandInFrontIsSeen) {
+  // GIVEN a 4x5 hand (20 skin pixels) at the body centre: the paper's 30 px is a third of this user's 8x8 hand
+  // square, so min_skin_square_share caps it at 0.25 x 64 = 16
+  cv::rectangle(mask, cv::Rect(163, 180, 4, 5), cv::Scalar(255), cv::FILLED);
+  auto r = on_mask(kFarBox);
+  ASSERT_EQ(r.kind, HandKind::Front);
+  EXPECT_EQ(r.hand_skin, 20);
+  // WHEN the paper's count alone is asked (share 0) THEN no hand
+  params.min_skin_square_share = 0;
+  EXPECT_EQ(on_mask(kFarBox).kind, HandKind::None);
+  // AND a near user keeps the paper's 30: 20 pixels in front of the 80 px box (a 20 px square, 0.25 x 400 = 100)
+  params.min_skin_square_share = 0.25;
+  mask.setTo(0);
+  cv::rectangle(mask, cv::Rect(138, 175, 4, 5), cv::Scalar(255), cv::FILLED);
+  EXPECT_EQ(on_mask().kind, HandKind::None);
+}
+
+TEST_F(RulesTest, AFarUsersTwoPixelArmJoinsTheHandToTheTorso) {
+  // GIVEN a green shirt filling the far box's torso rows, a 6x6 hand 27 px left of the box (x 118..123, y 162..167)
+  // and a forearm 2 px thick from the hand to the shirt (x 124..149, y 164..165)
+  const cv::Scalar kGreen(60, 140, 40);
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  cv::rectangle(frame, cv::Rect(150, 165, 30, 24), kGreen, cv::FILLED);
+  cv::rectangle(frame, cv::Rect(118, 162, 6, 6), kSkin, cv::FILLED);
+  cv::rectangle(frame, cv::Rect(124, 164, 26, 2), kSkin, cv::FILLED);
+  // WHEN the stage runs THEN OUT: the 3x3 opening clears the forearm from the hand candidates, but the arm test
+  // reads the skin before it (on the opened mask the 26 px gap left the hand armless and the frame NONE)
+  const auto r = on_frame(frame, kFarBox);
+  ASSERT_EQ(r.kind, HandKind::Out);
+  EXPECT_LT(r.vector.x, -30);
+  EXPECT_EQ(r.armless_dropped, 0);
+  // AND WHEN the forearm is cut (a 6 px gap at x 136..141) THEN the hand is armless, as before
+  cv::rectangle(frame, cv::Rect(136, 164, 6, 2), kBlue, cv::FILLED);
+  EXPECT_EQ(on_frame(frame, kFarBox).kind, HandKind::None);
 }
