@@ -4,7 +4,8 @@
 // given the frames the live stage processed, not those it skipped falling behind (ReplayPacing), and the
 // config the live stage published on CONFIG (unless --config or --set say otherwise). A timer-driven stage
 // (flight) has its timer fired at the instants the live one's fired, with the inputs it had then
-// (ReplayTicks), on the log's clock.
+// (ReplayTicks), on the log's clock. A stage that pairs two inputs by seq gets each pair as the live one
+// worked it, whatever order the log heard them in (PairHold).
 // This is how a bug seen in the field is reproduced on a desk.
 #include <algorithm>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "flight/flight_channels.hpp"
 #include "flight/flight_service.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
+#include "pair_hold.hpp"
 #include "replay_pacing.hpp"
 #include "replay_ticks.hpp"
 #include "hands/hands_channels.hpp"
@@ -134,6 +136,7 @@ struct StageEntry {
   std::vector<std::string> inputs, outputs;
   std::vector<std::pair<std::string, std::string>> paced = {};  //!< (input, output): see ReplayPacing
   std::function<ReplayTicks()> ticks = nullptr;                  //!< a timer-driven stage: see ReplayTicks
+  std::pair<std::string, std::string> paired = {};               //!< (held, partner) inputs: see PairHold
 };
 
 const std::map<std::string, StageEntry>& stages() {
@@ -146,7 +149,7 @@ const std::map<std::string, StageEntry>& stages() {
       {"tracker", {start_tracker_service, declared(tc::kUses, R::In), declared(tc::kUses, R::Out),
                    {{tc::kCamera.name, tc::kUserTrack.name}}}},
       {"hands", {start_hands_service, declared(hc::kUses, R::In), declared(hc::kUses, R::Out),
-                 {{hc::kCamera.name, hc::kHandObs.name}}}},
+                 {{hc::kCamera.name, hc::kHandObs.name}}, nullptr, {hc::kCamera.name, hc::kUserTrack.name}}},
       {"decide", {start_decide_service, declared(dc::kUses, R::In), declared(dc::kUses, R::Out)}},
       // With backend none the vehicle is the log's: its VEHICLE_STATE is an input here, not an output.
       {"flight", {start_flight_replayed, declared(fc::kUses, R::In),
@@ -260,10 +263,14 @@ int main(int argc, char** argv) {
     int64_t now_ts = 0;
     std::vector<std::shared_ptr<void>> running;
     std::unique_ptr<ReplayTicks> ticks;
+    std::unique_ptr<PairHold> pair_hold;
     bool configs_written = false;
     for (const auto& s : chain) {
       running.push_back(stages().at(s).start(stage_config.at(s), node));
       if (stages().at(s).ticks) ticks = std::make_unique<ReplayTicks>(stages().at(s).ticks());
+      // Both halves from the log (in a chain with the tracker, the track follows its frame at once).
+      const auto& [held, partner] = stages().at(s).paired;
+      if (!held.empty() && inputs.count(held) && inputs.count(partner)) pair_hold = std::make_unique<PairHold>(held, partner);
     }
     // The new log carries the config each replayed stage ran with, as a live run's does.
     auto write_configs = [&](int64_t ts) {
@@ -331,8 +338,20 @@ int main(int argc, char** argv) {
       const bool input = inputs.count(ev->channel) > 0;
       if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       if (!input) continue;
-      if (!pacing.give(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))))) continue;
+      const int64_t seq = seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24)));
+      if (!pacing.give(ev->channel, seq)) continue;
       ++n_inputs;
+      if (pair_hold && pair_hold->holds(ev->channel)) {
+        pair_hold->hold(seq, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
+        continue;
+      }
+      if (pair_hold && pair_hold->is_partner(ev->channel))
+        if (auto held = pair_hold->release(seq)) {
+          node.set_log_time(held->timestamp);
+          node.publish_raw(pair_hold->held_channel(), held->bytes.data(), held->bytes.size());
+          node.drain();
+          node.set_log_time(now_ts);
+        }
       if (ticks && ticks->keyed(ev->channel)) {
         ticks->hold(ev->channel, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
         continue;
@@ -344,6 +363,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "\rgpilot-replay: %lld events, %lld inputs to %s, rejected %lld, %lld frames the live stage skipped\n",
                  static_cast<long long>(n_events), static_cast<long long>(n_inputs), stage_arg.c_str(),
                  static_cast<long long>(node.stats().rejected_count()), static_cast<long long>(pacing.held_back()));
+    if (pair_hold && pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting()) > 0)
+      log_info("%lld %s messages met no partner in the log (the live stage had skipped them)",
+               static_cast<long long>(pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting())),
+               pair_hold->held_channel().c_str());
     if (ticks && ticks->not_logged() > 0)
       log_warn("%lld of the live stage's ticks had an input the log lacks (the logger lost it): they may differ",
                static_cast<long long>(ticks->not_logged()));
