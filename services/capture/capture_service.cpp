@@ -162,8 +162,12 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     node.publish_health();
     return 0;
   };
-  // Serves the bus (VEHICLE_STATE, timers) until the monotonic clock reaches `until`.
+  // Serves the bus (VEHICLE_STATE, timers) until the monotonic clock reaches `until`; what is queued is served
+  // even when `until` has passed (a frame rendered late on a loaded machine): without it the camera stood still
+  // for 3.8 s while the drone flew, then jumped 1.5 m.
   auto serve_until = [&](int64_t until) {
+    node.drain();
+    node.spin_once(0);
     for (int64_t now = monotonic_utime(); now < until && !node.stopping(); now = monotonic_utime())
       node.spin_once(static_cast<int>(std::max<int64_t>(0, (until - now) / 1000)));
   };

@@ -1,10 +1,11 @@
 // gpilot-capture as a real process on real LCM: the synthetic world at 25 fps in real time publishes CAMERA
 // and GROUND_TRUTH with the same seq and utime, flies its camera with VEHICLE_STATE and exits 0 at --duration;
-// a 60-frame video file arrives whole; a missing file exits 1 with ERROR in HEALTH.
+// it does so too at a frame rate it cannot keep; a 60-frame video file arrives whole; a missing file exits 1 with ERROR in HEALTH.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -97,6 +98,43 @@ TEST(CaptureLcm, SyntheticWorldInRealTimeWithTruthAndClosedLoop) {
   EXPECT_GE(matched, 45);
   ASSERT_FALSE(truth_camera_north.empty());
   EXPECT_FLOAT_EQ(truth_camera_north.rbegin()->second, 0.5f);
+}
+
+// A capture that cannot keep its frame rate (a loaded machine: each frame rendered late) still serves the bus
+// between frames. It did not: the pacing wait ended before it began, VEHICLE_STATE was never read, and a
+// closed-loop run's camera stood still for 3.8 s while the drone flew 1.6 m, then jumped (CI, e2e nuisances).
+TEST(CaptureLcm, AFrameRateItCannotKeepStillFliesTheCameraWithTheVehicle) {
+  BusNode node("test", kUrl);
+  std::map<int64_t, float> truth_camera_north;
+  node.subscribe<ground_truth_t>("GROUND_TRUTH", [&](const ground_truth_t& m, int64_t) {
+    truth_camera_north[m.seq] = m.camera_position[0];
+  });
+  // GIVEN 240 fps of 1440x1080 frames (each takes longer than its 4.2 ms to render) and a vehicle flying north
+  // 1 cm per state, 50 states a second
+  vehicle_state_t v{};
+  v.position[2] = -1.5f;
+  v.source = vehicle_state_t::SOURCE_SIMULATOR;
+  int64_t next_state = 0;
+  const int status = serve_until_exit(
+      node,
+      start_capture({"--synthetic", "tour", "--duration", "0.5", "--set", "capture.synthetic.fps=240", "--set",
+                     "capture.synthetic.width=1440", "--set", "capture.synthetic.height=1080"}),
+      [&] {
+        if (monotonic_utime() >= next_state) {
+          v.utime = node.now();
+          ++v.seq;
+          v.position[0] = 0.01f * static_cast<float>(v.seq);
+          node.publish("VEHICLE_STATE", v);
+          next_state = monotonic_utime() + 20'000;
+        }
+      });
+  EXPECT_EQ(status, 0);
+  ASSERT_GE(truth_camera_north.size(), 100u);  // 120 frames
+  // THEN the camera moves with the vehicle from frame to frame, and the last frame is where the vehicle was
+  std::set<float> norths;
+  for (const auto& [seq, north] : truth_camera_north) norths.insert(north);
+  EXPECT_GE(norths.size(), 20u) << "the camera stood still while the vehicle flew";
+  EXPECT_NEAR(truth_camera_north.rbegin()->second, v.position[0], 0.15) << "the last frame's camera is stale";
 }
 
 TEST(CaptureLcm, VideoFileArrivesWhole) {
