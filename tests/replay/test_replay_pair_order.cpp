@@ -1,8 +1,8 @@
 // PairHold (tools/replay/pair_hold.hpp): which order a pairing stage is given its two inputs. Known answers
 // of the class; and, on the committed hands log, a replay that does not depend on the order the log heard
 // CAMERA and USER_TRACK in: GIVEN the log rewritten with every USER_TRACK 20 frames late (a tracker behind
-// under load, as the live hands stage may have had it, whose pairer waits 15 seqs) WHEN hands is replayed
-// THEN every HAND_OBS is given again, unchanged.
+// under load; the live pairer waits 15 seqs), or with every frame after its track (the recorder's frames
+// socket served late) WHEN hands is replayed THEN every HAND_OBS is given again, unchanged.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -21,70 +21,95 @@ namespace {
 
 std::vector<uint8_t> bytes(uint8_t b) { return {b}; }
 
-TEST(PairHold, AHeldMessageIsGivenWithItsPartnerAndOneThatNeverMeetsItGoes) {
+TEST(PairHold, APairIsGivenWhenItsSecondHalfComesFrameFirst) {
   PairHold h("CAMERA", "USER_TRACK");
-  EXPECT_TRUE(h.holds("CAMERA"));
-  EXPECT_TRUE(h.is_partner("USER_TRACK"));
-  EXPECT_FALSE(h.holds("USER_TRACK"));
-  h.hold(1, 100, bytes(1));
-  h.hold(2, 140, bytes(2));
-  h.hold(3, 180, bytes(3));
-  EXPECT_EQ(h.waiting(), 3u);
-  const auto one = h.release(1);
-  ASSERT_TRUE(one);
-  EXPECT_EQ(one->timestamp, 100);
-  EXPECT_EQ(one->bytes, bytes(1));
-  // Frame 2's track never comes (the live tracker skipped it): the track of 3 releases 3 and drops 2.
-  const auto three = h.release(3);
-  ASSERT_TRUE(three);
-  EXPECT_EQ(three->bytes, bytes(3));
+  EXPECT_TRUE(h.pairs("CAMERA"));
+  EXPECT_TRUE(h.pairs("USER_TRACK"));
+  EXPECT_FALSE(h.pairs("TRACKER_INIT"));
+  // Frame 1, then its track: the pair, frame first, each with its own time.
+  EXPECT_TRUE(h.add("CAMERA", 1, 100, bytes(1)).empty());
+  auto pair = h.add("USER_TRACK", 1, 130, bytes(11));
+  ASSERT_EQ(pair.size(), 2u);
+  EXPECT_EQ(pair[0].channel, "CAMERA");
+  EXPECT_EQ(pair[0].timestamp, 100);
+  EXPECT_EQ(pair[0].bytes, bytes(1));
+  EXPECT_EQ(pair[1].channel, "USER_TRACK");
+  EXPECT_EQ(pair[1].bytes, bytes(11));
+  // A track heard before its frame (the recorder timestamped the frame late): still frame first.
+  EXPECT_TRUE(h.add("USER_TRACK", 2, 170, bytes(12)).empty());
+  pair = h.add("CAMERA", 2, 175, bytes(2));
+  ASSERT_EQ(pair.size(), 2u);
+  EXPECT_EQ(pair[0].channel, "CAMERA");
+  EXPECT_EQ(pair[1].channel, "USER_TRACK");
   EXPECT_EQ(h.waiting(), 0u);
-  EXPECT_EQ(h.never_paired(), 1);
-  // A track whose frame is not held (the live hands stage skipped that frame): nothing.
-  EXPECT_FALSE(h.release(4));
-  // A restarted capture's low seqs are not dropped by the old stream's later tracks.
-  h.hold(2, 500, bytes(9));
-  EXPECT_FALSE(h.release(5000));
-  EXPECT_EQ(h.waiting(), 1u);
-  EXPECT_TRUE(h.release(2));
+}
+
+TEST(PairHold, AHalfThatNeverMeetsItsPartnerIsDroppedWhenALaterPairCompletes) {
+  PairHold h("CAMERA", "USER_TRACK");
+  h.add("CAMERA", 3, 0, bytes(3));       // its track never comes (the live tracker skipped it)
+  h.add("USER_TRACK", 4, 0, bytes(14));  // its frame never comes (the live hands stage skipped it)
+  h.add("CAMERA", 5, 0, bytes(5));
+  EXPECT_EQ(h.waiting(), 3u);
+  EXPECT_EQ(h.add("USER_TRACK", 5, 0, bytes(15)).size(), 2u);
+  EXPECT_EQ(h.waiting(), 0u);
+  EXPECT_EQ(h.never_paired(), 2);
+  // A restarted capture's low seqs are not dropped by the old stream's later pairs.
+  h.add("CAMERA", 2, 0, bytes(9));
+  h.add("CAMERA", 5000, 0, bytes(9));
+  EXPECT_EQ(h.add("USER_TRACK", 5000, 0, bytes(9)).size(), 2u);
+  EXPECT_EQ(h.add("USER_TRACK", 2, 0, bytes(9)).size(), 2u);
+}
+
+// The committed hands log rewritten with every message of `late` given `by` frames (CAMERA) or tracks
+// (USER_TRACK) of the other channel later.
+std::string rewritten(const std::string& late, size_t by) {
+  const std::string log = std::string(GPILOT_SOURCE_DIR) + "/tests/replay/logs/hands.lcmlog";
+  const std::string path = std::filesystem::temp_directory_path() /
+                           ("gpilot-late-" + late + "-" + std::to_string(getpid()) + ".lcmlog");
+  const std::string other = late == "CAMERA" ? "USER_TRACK" : "CAMERA";
+  lcm::LogFile in(log, "r"), out(path, "w");
+  EXPECT_TRUE(in.good() && out.good());
+  std::deque<lcm::LogEvent> held;  // copies whose data lives in `kept`
+  std::deque<std::vector<uint8_t>> kept;
+  int64_t eventnum = 0, moved = 0;
+  const auto write = [&](lcm::LogEvent e) {
+    e.eventnum = eventnum++;
+    out.writeEvent(&e);
+  };
+  for (const lcm::LogEvent* ev = in.readNextEvent(); ev; ev = in.readNextEvent()) {
+    if (ev->channel == late) {
+      const auto* p = static_cast<const uint8_t*>(ev->data);
+      kept.emplace_back(p, p + ev->datalen);
+      held.push_back(*ev);
+      held.back().data = kept.back().data();
+      continue;
+    }
+    write(*ev);
+    if (ev->channel == other && held.size() > by) write(held.front()), held.pop_front(), kept.pop_front(), ++moved;
+  }
+  while (!held.empty()) write(held.front()), held.pop_front(), kept.pop_front();
+  EXPECT_GT(moved, 100);
+  return path;
+}
+
+std::string replay_hands(const std::string& log) {
+  const test::CommandOutput r = test::run_command(std::string(GPILOT_BIN_DIR) + "/gpilot-replay " + log +
+                                                  " --stage hands --check --config " + GPILOT_SOURCE_DIR +
+                                                  "/deploy/config/synthetic.yaml 2>&1");
+  std::filesystem::remove(log);
+  EXPECT_EQ(r.code, 0) << r.out;
+  return r.out;
 }
 
 TEST(PairHold, HandsReplaysTheSamePairsWhenEveryTrackComesLate) {
-  const std::string log = std::string(GPILOT_SOURCE_DIR) + "/tests/replay/logs/hands.lcmlog";
-  const std::string late = std::filesystem::temp_directory_path() / ("gpilot-late-tracks-" + std::to_string(getpid()) + ".lcmlog");
-  {
-    lcm::LogFile in(log, "r"), out(late, "w");
-    ASSERT_TRUE(in.good() && out.good());
-    std::deque<lcm::LogEvent> tracks;  // copies whose data lives in `kept`
-    std::deque<std::vector<uint8_t>> kept;
-    int64_t eventnum = 0, moved = 0;
-    const auto write = [&](lcm::LogEvent e) {
-      e.eventnum = eventnum++;
-      out.writeEvent(&e);
-    };
-    for (const lcm::LogEvent* ev = in.readNextEvent(); ev; ev = in.readNextEvent()) {
-      if (ev->channel == "USER_TRACK") {
-        const auto* p = static_cast<const uint8_t*>(ev->data);
-        kept.emplace_back(p, p + ev->datalen);
-        tracks.push_back(*ev);
-        tracks.back().data = kept.back().data();
-        continue;
-      }
-      write(*ev);
-      if (ev->channel == "CAMERA" && tracks.size() > 20) {  // a track goes out 20 frames after its own
-        write(tracks.front());
-        tracks.pop_front(), kept.pop_front(), ++moved;
-      }
-    }
-    while (!tracks.empty()) write(tracks.front()), tracks.pop_front(), kept.pop_front();
-    ASSERT_GT(moved, 100);
-  }
-  const test::CommandOutput r = test::run_command(std::string(GPILOT_BIN_DIR) + "/gpilot-replay " + late +
-                                                  " --stage hands --check --config " + GPILOT_SOURCE_DIR +
-                                                  "/deploy/config/synthetic.yaml 2>&1");
-  std::filesystem::remove(late);
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("HAND_OBS     new    167  recorded    167  differences 0"), std::string::npos) << r.out;
+  // 20 frames late: the live pairer (15 seqs) would have let each frame expire
+  const std::string out = replay_hands(rewritten("USER_TRACK", 20));
+  EXPECT_NE(out.find("HAND_OBS     new    167  recorded    167  differences 0"), std::string::npos) << out;
+}
+
+TEST(PairHold, HandsReplaysTheSamePairsWhenEveryFrameComesAfterItsTrack) {
+  const std::string out = replay_hands(rewritten("CAMERA", 2));
+  EXPECT_NE(out.find("HAND_OBS     new    167  recorded    167  differences 0"), std::string::npos) << out;
 }
 
 }  // namespace

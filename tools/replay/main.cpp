@@ -136,7 +136,7 @@ struct StageEntry {
   std::vector<std::string> inputs, outputs;
   std::vector<std::pair<std::string, std::string>> paced = {};  //!< (input, output): see ReplayPacing
   std::function<ReplayTicks()> ticks = nullptr;                  //!< a timer-driven stage: see ReplayTicks
-  std::pair<std::string, std::string> paired = {};               //!< (held, partner) inputs: see PairHold
+  std::pair<std::string, std::string> paired = {};               //!< inputs given in pairs of one seq: see PairHold
 };
 
 const std::map<std::string, StageEntry>& stages() {
@@ -269,8 +269,8 @@ int main(int argc, char** argv) {
       running.push_back(stages().at(s).start(stage_config.at(s), node));
       if (stages().at(s).ticks) ticks = std::make_unique<ReplayTicks>(stages().at(s).ticks());
       // Both halves from the log (in a chain with the tracker, the track follows its frame at once).
-      const auto& [held, partner] = stages().at(s).paired;
-      if (!held.empty() && inputs.count(held) && inputs.count(partner)) pair_hold = std::make_unique<PairHold>(held, partner);
+      const auto& [first, second] = stages().at(s).paired;
+      if (!first.empty() && inputs.count(first) && inputs.count(second)) pair_hold = std::make_unique<PairHold>(first, second);
     }
     // The new log carries the config each replayed stage ran with, as a live run's does.
     auto write_configs = [&](int64_t ts) {
@@ -341,17 +341,15 @@ int main(int argc, char** argv) {
       const int64_t seq = seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24)));
       if (!pacing.give(ev->channel, seq)) continue;
       ++n_inputs;
-      if (pair_hold && pair_hold->holds(ev->channel)) {
-        pair_hold->hold(seq, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
+      if (pair_hold && pair_hold->pairs(ev->channel)) {
+        for (const auto& m : pair_hold->add(ev->channel, seq, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen))) {
+          node.set_log_time(m.timestamp);
+          node.publish_raw(m.channel, m.bytes.data(), m.bytes.size());
+          node.drain();
+        }
+        node.set_log_time(now_ts);
         continue;
       }
-      if (pair_hold && pair_hold->is_partner(ev->channel))
-        if (auto held = pair_hold->release(seq)) {
-          node.set_log_time(held->timestamp);
-          node.publish_raw(pair_hold->held_channel(), held->bytes.data(), held->bytes.size());
-          node.drain();
-          node.set_log_time(now_ts);
-        }
       if (ticks && ticks->keyed(ev->channel)) {
         ticks->hold(ev->channel, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
         continue;
@@ -364,9 +362,8 @@ int main(int argc, char** argv) {
                  static_cast<long long>(n_events), static_cast<long long>(n_inputs), stage_arg.c_str(),
                  static_cast<long long>(node.stats().rejected_count()), static_cast<long long>(pacing.held_back()));
     if (pair_hold && pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting()) > 0)
-      log_info("%lld %s messages met no partner in the log (the live stage had skipped them)",
-               static_cast<long long>(pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting())),
-               pair_hold->held_channel().c_str());
+      log_info("%lld inputs met no partner of their seq in the log (a frame or a track a live stage skipped): not given",
+               static_cast<long long>(pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting())));
     if (ticks && ticks->not_logged() > 0)
       log_warn("%lld of the live stage's ticks had an input the log lacks (the logger lost it): they may differ",
                static_cast<long long>(ticks->not_logged()));

@@ -1,17 +1,19 @@
 // The order gpilot-replay gives a pairing stage its two inputs. The live hands stage pairs CAMERA and
-// USER_TRACK by seq (SeqPairer) and works a pair when its second half arrives; an unpaired frame expires once
-// frames 15 seqs newer have come (hands.match_window). How far one stream ran ahead of the other depended on
-// how each socket's queue drained inside the hands process, which no log records: the recorder hears both
-// sockets itself. Given in the log's order, a frame whose track came 15 frames later (the tracker behind
-// under load) expired in the replay although the live stage had paired it: one HAND_OBS not replayed and
-// every later one different (the skin model learns from each pair). So a frame is held until its partner
-// is given, and then given just before it: the stage works the same pairs in the same order as live.
+// USER_TRACK by seq (SeqPairer) and works a pair when its second half arrives; an unpaired half expires once
+// one 15 seqs newer has come (hands.match_window). Which half came first, and how far one stream ran ahead of
+// the other, depended on how each socket's queue drained inside the hands process, which no log records: the
+// recorder hears both sockets itself, and on a loaded machine it timestamps a frame after the track made from
+// it, or a track 15 frames after its frame. Given in the log's order, such a frame expired in the replay, or
+// was given after its track had expired, although the live stage had paired it: a HAND_OBS not replayed and
+// every later one different (the skin model learns from each pair). So each half is held until the other is
+// in, and the pair is given then, `first`'s half first. Pairs complete in seq order (each stream is in order
+// in the log), live and here, so the stage works the same pairs in the same order; a half that never meets
+// its partner (the live stage skipped that frame, or the tracker did) is never given: alone it gives nothing.
 // Pure: no LCM, no clock.
 #pragma once
 
 #include <cstdint>
 #include <map>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,46 +22,52 @@ namespace gpilot {
 
 class PairHold {
  public:
-  struct Held {
+  struct Message {
+    std::string channel;
     int64_t timestamp;
     std::vector<uint8_t> bytes;
   };
 
-  // Messages on `held` wait for the message of the same seq on `partner`.
-  PairHold(std::string held, std::string partner) : held_(std::move(held)), partner_(std::move(partner)) {}
+  PairHold(std::string first, std::string second) : first_(std::move(first)), second_(std::move(second)) {}
 
-  const std::string& held_channel() const { return held_; }
-  bool holds(const std::string& channel) const { return channel == held_; }
-  bool is_partner(const std::string& channel) const { return channel == partner_; }
+  bool pairs(const std::string& channel) const { return channel == first_ || channel == second_; }
 
-  void hold(int64_t seq, int64_t timestamp, std::vector<uint8_t> bytes) {
-    waiting_.insert_or_assign(seq, Held{timestamp, std::move(bytes)});
-    while (waiting_.size() > kMaxWaiting) waiting_.erase(waiting_.begin()), ++never_paired_;
-  }
-  // The partner of `seq` is about to be given: the held message of that seq, if one waits. Partners come in
-  // seq order, so a held message a little older than seq (within kStreamWindow: not one of a restarted
-  // source's low seqs) will never meet its partner (the live stage skipped that frame's track) and goes.
-  std::optional<Held> release(int64_t seq) {
-    std::optional<Held> out;
-    const auto it = waiting_.find(seq);
-    if (it != waiting_.end()) {
-      out = std::move(it->second);
-      waiting_.erase(it);
+  // Holds the message; when its partner is already held, returns the pair (`first`'s message first) and drops
+  // the halves older than it (within kStreamWindow: not a restarted source's low seqs), which will never pair.
+  std::vector<Message> add(const std::string& channel, int64_t seq, int64_t timestamp, std::vector<uint8_t> bytes) {
+    const bool is_first = channel == first_;
+    auto& mine = is_first ? firsts_ : seconds_;
+    auto& other = is_first ? seconds_ : firsts_;
+    const auto partner = other.find(seq);
+    if (partner == other.end()) {
+      mine.insert_or_assign(seq, Message{channel, timestamp, std::move(bytes)});
+      for (auto* held : {&firsts_, &seconds_})
+        while (held->size() > kMaxWaiting) held->erase(held->begin()), ++never_paired_;
+      return {};
     }
-    for (auto old = waiting_.lower_bound(seq - kStreamWindow); old != waiting_.end() && old->first < seq;) {
-      old = waiting_.erase(old);
-      ++never_paired_;
+    std::vector<Message> pair;
+    Message own{channel, timestamp, std::move(bytes)};
+    if (is_first) {
+      pair.push_back(std::move(own));
+      pair.push_back(std::move(partner->second));
+    } else {
+      pair.push_back(std::move(partner->second));
+      pair.push_back(std::move(own));
     }
-    return out;
+    other.erase(partner);
+    for (auto* held : {&firsts_, &seconds_})
+      for (auto old = held->lower_bound(seq - kStreamWindow); old != held->end() && old->first < seq;)
+        old = held->erase(old), ++never_paired_;
+    return pair;
   }
-  size_t waiting() const { return waiting_.size(); }
+  size_t waiting() const { return firsts_.size() + seconds_.size(); }
   int64_t never_paired() const { return never_paired_; }
 
  private:
   static constexpr size_t kMaxWaiting = 1000;
   static constexpr int64_t kStreamWindow = 1000;
-  std::string held_, partner_;
-  std::map<int64_t, Held> waiting_;
+  std::string first_, second_;
+  std::map<int64_t, Message> firsts_, seconds_;
   int64_t never_paired_ = 0;
 };
 
