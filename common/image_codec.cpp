@@ -73,6 +73,28 @@ std::string jpeg_dimensions(const uint8_t* data, size_t size, int& width, int& h
   return "JPEG data ends before its frame header (SOF)";
 }
 
+std::string jpeg_to_image(const uint8_t* data, size_t size, int64_t utime, int64_t seq, image_t& out) {
+  int width = 0, height = 0;
+  const std::string bad = jpeg_dimensions(data, size, width, height);
+  if (!bad.empty()) return bad;
+  tjhandle tj = jpeg_decompressor();
+  if (!tj) return "JPEG decoder could not be made";
+  int tj_w = 0, tj_h = 0, subsamp = 0, colourspace = 0;
+  if (tjDecompressHeader3(tj, const_cast<uint8_t*>(data), static_cast<unsigned long>(size), &tj_w, &tj_h, &subsamp,
+                          &colourspace) != 0)
+    return std::string("JPEG header does not decode: ") + tjGetErrorStr2(tj);
+  if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK) return "JPEG of an unsupported pixel type (CMYK)";
+  out.utime = utime;
+  out.seq = seq;
+  out.width = width;
+  out.height = height;
+  out.row_stride = 0;
+  out.pixel_format = image_t::PIXEL_FORMAT_JPEG;
+  out.data.assign(data, data + size);
+  out.size = static_cast<int32_t>(out.data.size());
+  return "";
+}
+
 std::string image_to_mat(const image_t& msg, cv::Mat& out, const ImageLimits& limits) {
   // The last decoded frame's buffer is decoded into again when nobody else holds it (a stage that keeps
   // frames, e.g. to pair them with tracks, holds another reference): no fresh 921 kB mapping and its page

@@ -22,6 +22,11 @@ std::string image_to_mat(const image_t& msg, cv::Mat& out, const ImageLimits& li
 // why the bytes are not a JPEG whose size can be read (no SOI, a segment past the end, no SOF before SOS).
 std::string jpeg_dimensions(const uint8_t* data, size_t size, int& width, int& height);
 
+// A source's own JPEG (an MJPEG video's frame, a webcam's MJPEG buffer) as a JPEG image_t, without decoding
+// its pixels: "" and `out` filled, or why the bytes are not a JPEG the stages could decode (its header is read
+// by the same decoder they use).
+std::string jpeg_to_image(const uint8_t* data, size_t size, int64_t utime, int64_t seq, image_t& out);
+
 // JPEG chroma subsampling: 4:4:4 keeps every pixel's colour (a 10 px hand square at 10 m keeps its skin
 // colour), 4:2:0 halves chroma both ways (smaller files, colour smeared over 2x2 pixels).
 enum class JpegChroma { k444, k422, k420 };

@@ -21,6 +21,8 @@ struct CaptureParams {
   std::string pixel_format = "JPEG";  //!< published format: BGR8, GRAY8 or JPEG
   int jpeg_quality = 65;              //!< 1..100, with pixel_format JPEG
   std::string jpeg_chroma = "444";    //!< JPEG chroma subsampling: 444, 422 or 420
+  bool jpeg_passthrough = true;       //!< with pixel_format JPEG, an MJPEG video's own JPEG frames are published
+                                      //!< as stored (no decode and re-encode; their quality and chroma are the file's)
   double camera_retry_s = 1.0;        //!< wait before reopening a camera that disappeared
   SyntheticParams synthetic;          //!< the default source: the synthetic world
 
@@ -34,6 +36,8 @@ struct CaptureParams {
     v("jpeg_chroma", jpeg_chroma,
       "JPEG chroma subsampling: 444 (every pixel's colour: small hands far away keep their skin colour), 422 or 420 "
       "(colour per 2x2 pixels: smaller)");
+    v("jpeg_passthrough", jpeg_passthrough,
+      "with pixel_format JPEG, publish an MJPEG video's own JPEG frames as stored (no decode and re-encode)");
     v("camera_retry_s", camera_retry_s, 0.05, 60.0, "wait before reopening a lost camera, s");
     v.group("synthetic", synthetic);
   }

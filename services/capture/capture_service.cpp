@@ -53,7 +53,8 @@ ground_truth_t to_message(const SyntheticTruth& t, int64_t utime, int64_t seq) {
 
 // One frame from whichever source: the frame, its utime and (synthetic world) its ground truth.
 struct Produced {
-  cv::Mat bgr;
+  cv::Mat bgr;        // or, with `jpeg`, the source's own JPEG bytes in one row
+  bool jpeg = false;
   int64_t utime = 0;
   std::optional<SyntheticTruth> truth;
 };
@@ -111,13 +112,15 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
       case CaptureOptions::Kind::Video:
       case CaptureOptions::Kind::Images: {
         if (o.kind == CaptureOptions::Kind::Video)
-          file = std::make_unique<VideoFileSource>(o.source, o.loop);
+          file = std::make_unique<VideoFileSource>(o.source, o.loop,
+                                                   format == image_t::PIXEL_FORMAT_JPEG && p.jpeg_passthrough);
         else
           file = std::make_unique<ImageFolderSource>(o.source, p.fps, o.loop);
         fps = file->fps();
         opened = file->describe();
         produce = [&](int64_t, Produced& out, std::string& why) {
           const ReadStatus s = file->read(out.bgr, why);
+          out.jpeg = file->gives_jpeg();
           // Stamped when read, on the bus clock like a camera's: the file's own time (media_time_s) is not a
           // time on the bus, and downstream stages judge freshness and latency by utime.
           out.utime = node.now();
@@ -180,7 +183,17 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
       case ReadStatus::Frame: {
         f.utime = std::max(f.utime, last_utime + 1);  // each frame its own time, even read within a microsecond
         last_utime = f.utime;
-        const image_t img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality, chroma);
+        image_t img;
+        if (f.jpeg) {
+          const std::string bad = jpeg_to_image(f.bgr.data, f.bgr.total(), f.utime, seq, img);
+          if (!bad.empty()) {  // a damaged frame of the file: counted, not published
+            log_warn("frame %lld of the source is not a JPEG the stages could decode: %s", static_cast<long long>(seq), bad.c_str());
+            node.reject(bad);
+            break;
+          }
+        } else {
+          img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality, chroma);
+        }
         publish(node, capture_channels::kCamera, img);
         if (f.truth) publish(node, capture_channels::kGroundTruth, to_message(*f.truth, f.utime, seq));
         ++seq;

@@ -8,6 +8,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
 namespace gpilot {
 namespace {
@@ -26,7 +27,8 @@ void to_bgr(cv::Mat& m) {
 
 }  // namespace
 
-VideoFileSource::VideoFileSource(const std::string& path, bool loop) : path_(path), loop_(loop) {
+VideoFileSource::VideoFileSource(const std::string& path, bool loop, bool jpeg_passthrough)
+    : path_(path), loop_(loop), jpeg_passthrough_(jpeg_passthrough) {
   if (!std::filesystem::is_regular_file(path_)) throw SourceError("video file '" + path_ + "' does not exist");
   if (!open()) throw SourceError("FFmpeg cannot open video file '" + path_ + "' (not a video, or a codec it lacks)");
 }
@@ -37,14 +39,22 @@ bool VideoFileSource::open() {
   const double fps = cap_.get(cv::CAP_PROP_FPS);
   fps_ = std::isfinite(fps) && fps > 0.1 && fps < 1000 ? fps : 25.0;  // unknown rate: the paper's 25
   count_ = static_cast<int64_t>(std::max(0.0, cap_.get(cv::CAP_PROP_FRAME_COUNT)));
+  width_ = static_cast<int>(cap_.get(cv::CAP_PROP_FRAME_WIDTH));
+  height_ = static_cast<int>(cap_.get(cv::CAP_PROP_FRAME_HEIGHT));
   in_pass_ = 0;
+  // MJPEG: each stored frame is a JPEG already. Read undecoded (OpenCV's FFmpeg raw mode, set before the first
+  // read), it is published without a decode and a re-encode.
+  const int fourcc = static_cast<int>(cap_.get(cv::CAP_PROP_FOURCC));
+  const bool mjpeg = fourcc == cv::VideoWriter::fourcc('M', 'J', 'P', 'G') || fourcc == cv::VideoWriter::fourcc('m', 'j', 'p', 'g');
+  raw_jpeg_ = jpeg_passthrough_ && mjpeg && cap_.set(cv::CAP_PROP_FORMAT, -1);
   return true;
 }
 
 ReadStatus VideoFileSource::read(cv::Mat& out, std::string& why) {
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (cap_.read(out) && !out.empty()) {
-      to_bgr(out);
+      if (raw_jpeg_) out = out.reshape(1, 1);  // the packet's bytes, one row
+      else to_bgr(out);
       ++frames_;
       ++in_pass_;
       return ReadStatus::Frame;
@@ -57,8 +67,8 @@ ReadStatus VideoFileSource::read(cv::Mat& out, std::string& why) {
 }
 
 std::string VideoFileSource::describe() const {
-  return "video '" + path_ + "' (" + std::to_string(static_cast<int>(cap_.get(cv::CAP_PROP_FRAME_WIDTH))) + "x" +
-         std::to_string(static_cast<int>(cap_.get(cv::CAP_PROP_FRAME_HEIGHT))) + " @ " + fmt_fps(fps_) + " fps, " +
+  return "video '" + path_ + "' (" + std::to_string(width_) + "x" + std::to_string(height_) +
+         (raw_jpeg_ ? " MJPEG, its JPEG frames passed through" : "") + " @ " + fmt_fps(fps_) + " fps, " +
          std::to_string(count_) + " frames" + (loop_ ? ", looping)" : ")");
 }
 

@@ -32,6 +32,8 @@ class FrameSource {
  public:
   virtual ~FrameSource() = default;
   virtual ReadStatus read(cv::Mat& out, std::string& why) = 0;
+  // Whether read() gives the source's own JPEG bytes (a 1-row CV_8UC1 Mat) instead of BGR pixels.
+  virtual bool gives_jpeg() const { return false; }
   virtual std::string describe() const = 0;  //!< what is open, for logs and HEALTH
   virtual double fps() const = 0;            //!< frame rate the frames should be paced at
   int64_t frames_read() const { return frames_; }
@@ -44,9 +46,11 @@ class FrameSource {
 // A video file via cv::CAP_FFMPEG (GStreamer is broken on Debian 12's OpenCV, see STACK.md).
 class VideoFileSource : public FrameSource {
  public:
-  // Throws SourceError with the reason when the file is missing or FFmpeg cannot open it.
-  VideoFileSource(const std::string& path, bool loop);
+  // Throws SourceError with the reason when the file is missing or FFmpeg cannot open it. With jpeg_passthrough,
+  // an MJPEG video's frames are read as they are stored (FFmpeg's raw packets, each a JPEG), not decoded.
+  VideoFileSource(const std::string& path, bool loop, bool jpeg_passthrough = false);
   ReadStatus read(cv::Mat& out, std::string& why) override;
+  bool gives_jpeg() const override { return raw_jpeg_; }
   std::string describe() const override;
   double fps() const override { return fps_; }
   int64_t frame_count() const { return count_; }  //!< as the container reports it (may be 0 if unknown)
@@ -54,7 +58,9 @@ class VideoFileSource : public FrameSource {
  private:
   bool open();
   std::string path_;
-  bool loop_;
+  bool loop_, jpeg_passthrough_;
+  bool raw_jpeg_ = false;
+  int width_ = 0, height_ = 0;
   cv::VideoCapture cap_;
   double fps_ = 25.0;
   int64_t count_ = 0;

@@ -1,7 +1,7 @@
 // The capture loop in-process on memq:// (no network): a video written with cv::VideoWriter reads back with
 // the right frame count, sizes and growing utimes (the bus clock when read); a missing file is a clear error in HEALTH; a bad image in
 // a folder is a counted rejection; the synthetic world publishes CAMERA and GROUND_TRUTH with the same seq and
-// utime and flies its camera with VEHICLE_STATE.
+// utime and flies its camera with VEHICLE_STATE; an MJPEG video's own JPEG frames are published as stored.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -210,6 +210,71 @@ TEST_F(CaptureService, JpegByConfig) {
   cv::Mat f;
   ASSERT_EQ(image_to_mat(r.frames[0], f), "");
   EXPECT_EQ(f.size(), cv::Size(640, 480));
+}
+
+// Issue 14: an MJPEG video's frames are JPEGs already. GIVEN a 20-frame MJPG clip WHEN captured as JPEG (the
+// default) THEN each CAMERA message carries the file's own JPEG, byte for byte as FFmpeg stores it (no decode and
+// re-encode), with its size read from its header; and it decodes to the frame's content. With
+// capture.jpeg_passthrough false, or as BGR8, the frames are decoded and (for JPEG) encoded again.
+TEST_F(CaptureService, AnMjpegVideosOwnJpegFramesArePublishedAsStored) {
+  const std::string path = write_clip("mjpeg.avi", 20, 20.0, {320, 240}, 10);
+  std::vector<std::vector<uint8_t>> stored;
+  {
+    cv::VideoCapture raw(path, cv::CAP_FFMPEG);
+    ASSERT_TRUE(raw.set(cv::CAP_PROP_FORMAT, -1));
+    for (cv::Mat packet; raw.read(packet) && !packet.empty();)
+      stored.emplace_back(packet.data, packet.data + packet.total() * packet.elemSize());
+  }
+  ASSERT_EQ(stored.size(), 20u);
+  ASSERT_GE(stored[0].size(), 2u);
+  EXPECT_EQ(stored[0][0], 0xFF);
+  EXPECT_EQ(stored[0][1], 0xD8);  // SOI: each packet is a whole JPEG
+  const auto capture = [&](const std::string& yaml) {
+    BusNode node("test", "memq://");
+    Received r;
+    listen(node, r);
+    EXPECT_EQ(run_capture(Config::from_string(yaml), video(path), node), 0);
+    drain(node);
+    return r;
+  };
+  const Received passed = capture("capture:\n  pixel_format: JPEG\n");
+  ASSERT_EQ(passed.frames.size(), 20u);
+  for (size_t i = 0; i < passed.frames.size(); ++i) {
+    const image_t& m = passed.frames[i];
+    EXPECT_EQ(m.pixel_format, image_t::PIXEL_FORMAT_JPEG);
+    EXPECT_EQ(m.width, 320);
+    EXPECT_EQ(m.height, 240);
+    EXPECT_EQ(m.data, stored[i]) << "frame " << i << " was not the file's own JPEG";
+    cv::Mat f;
+    ASSERT_EQ(image_to_mat(m, f), "");
+    EXPECT_NEAR(cv::mean(f)[0], i * 10.0, 3.0);
+  }
+  ASSERT_FALSE(passed.health.empty());
+  const Received encoded = capture("capture:\n  pixel_format: JPEG\n  jpeg_passthrough: false\n");
+  ASSERT_EQ(encoded.frames.size(), 20u);
+  EXPECT_NE(encoded.frames[5].data, stored[5]);  // decoded, then encoded at capture.jpeg_quality
+  const Received raw = capture("capture:\n  pixel_format: BGR8\n");
+  ASSERT_EQ(raw.frames.size(), 20u);
+  EXPECT_EQ(raw.frames[5].pixel_format, image_t::PIXEL_FORMAT_BGR8);
+}
+
+TEST(JpegToImage, RefusesBytesThatAreNoJpegTheStagesCouldDecode) {
+  image_t m;
+  const std::vector<uint8_t> junk(100, 0x42);
+  EXPECT_NE(jpeg_to_image(junk.data(), junk.size(), 1, 2, m), "");
+  std::vector<uint8_t> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(48, 64, CV_8UC3, cv::Scalar(10, 200, 30)), jpeg));
+  EXPECT_NE(jpeg_to_image(jpeg.data(), 20, 1, 2, m), "");  // cut before its frame header
+  ASSERT_EQ(jpeg_to_image(jpeg.data(), jpeg.size(), 1, 2, m), "");
+  EXPECT_EQ(m.utime, 1);
+  EXPECT_EQ(m.seq, 2);
+  EXPECT_EQ(m.width, 64);
+  EXPECT_EQ(m.height, 48);
+  EXPECT_EQ(m.size, static_cast<int32_t>(jpeg.size()));
+  EXPECT_EQ(m.data, jpeg);
+  cv::Mat f;
+  ASSERT_EQ(image_to_mat(m, f), "");
+  EXPECT_NEAR(cv::mean(f)[1], 200, 3);
 }
 
 TEST_F(CaptureService, BadPixelFormatIsAConfigError) {
