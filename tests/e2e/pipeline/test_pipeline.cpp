@@ -376,6 +376,8 @@ TEST_P(ScenarioE2E, TrajectoryDoesWhatTheGesturesAsk) {
   // after CLOSER gave a 6-frame FURTHER GESTURE_CMD in a nuisances run, never flown).
   const std::string path = given ? std::string(given) : dir + "/log.lcmlog";
   const EvalLog recorded = read_eval_log(path);
+  ASSERT_FALSE(recorded.recorded_flown.empty())
+      << path << ": no FLIGHT_SETPOINT decodes (a log from code whose messages differ?): what was flown is unknown";
   const Score flown = score_commands(truth_of(recorded), recorded.recorded_flown, ScoreRules{});
   std::fprintf(stderr, "flown: reaction median %.2f s, max %.2f s; false at rest %d (%lld frames), confused %d (%lld frames)\n",
                flown.reaction_median_s(), flown.reaction_max_s(), flown.false_at_rest,
