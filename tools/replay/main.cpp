@@ -5,7 +5,8 @@
 // config the live stage published on CONFIG (unless --config or --set say otherwise). A timer-driven stage
 // (flight) has its timer fired at the instants the live one's fired, with the inputs it had then
 // (ReplayTicks), on the log's clock. A stage that pairs two inputs by seq gets each pair as the live one
-// worked it, whatever order the log heard them in (PairHold).
+// worked it, whatever order the log heard them in (PairHold); a manual TRACKER_INIT box before the frame the live
+// tracker started it on (InitAlign).
 // This is how a bug seen in the field is reproduced on a desk.
 #include <algorithm>
 #include <cstdio>
@@ -22,6 +23,9 @@
 #include "flight/flight_channels.hpp"
 #include "flight/flight_service.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
+#include "gpilot/tracker_init_t.hpp"
+#include "gpilot/user_track_t.hpp"
+#include "init_align.hpp"
 #include "pair_hold.hpp"
 #include "replay_pacing.hpp"
 #include "replay_ticks.hpp"
@@ -212,11 +216,37 @@ int main(int argc, char** argv) {
     // The same pass finds the config each live stage published on CONFIG when it started (the first one of its
     // process name): a stage replays with its own run's config unless --config or --set chose one.
     std::map<std::string, std::string> logged_yaml;  // process -> YAML
+    // A replayed tracker given the log's manual boxes: each before the frame the live one started it on (InitAlign).
+    namespace tc = tracker_channels;
+    const bool align_inits = std::find(chain.begin(), chain.end(), "tracker") != chain.end() &&
+                             inputs.count(tc::kTrackerInit.name) && inputs.count(tc::kCamera.name);
+    InitAlign align;
+    std::vector<std::pair<int64_t, std::vector<uint8_t>>> set_boxes;  // log time, bytes: every SET_BOX in order
     {
       const std::set<std::string> paced_outputs = pacing.output_channels();
       lcm::LogFile scan(in_path, "r");
       if (!scan.good()) throw std::runtime_error(in_path + ": cannot open log");
+      int32_t last_track_id = -1;
       for (const lcm::LogEvent* ev = scan.readNextEvent(); ev; ev = scan.readNextEvent()) {
+        if (align_inits) {
+          const auto* p = static_cast<const uint8_t*>(ev->data);
+          if (ev->channel == tc::kCamera.name) {
+            align.frame(seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
+          } else if (ev->channel == tc::kUserTrack.name) {
+            user_track_t t{};
+            if (t.decode(ev->data, 0, ev->datalen) > 0) {
+              if (t.init_source == user_track_t::INIT_MANUAL && t.track_id != last_track_id)
+                align.manual_start(t.seq, {t.box[0], t.box[1], t.box[2], t.box[3]});
+              last_track_id = t.track_id;
+            }
+          } else if (ev->channel == tc::kTrackerInit.name) {
+            tracker_init_t m{};
+            if (m.decode(ev->data, 0, ev->datalen) > 0 && m.command == tracker_init_t::COMMAND_SET_BOX) {
+              align.set_box({m.box[0], m.box[1], m.box[2], m.box[3]});
+              set_boxes.emplace_back(ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
+            }
+          }
+        }
         if (paced_outputs.count(ev->channel)) {
           const auto* p = static_cast<const uint8_t*>(ev->data);
           pacing.recorded(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
@@ -240,6 +270,8 @@ int main(int argc, char** argv) {
       stage_config.emplace(s, std::move(logged));
       log_info("%s runs with the config gpilot-%s published in the log", s.c_str(), s.c_str());
     }
+    if (align_inits) align.finish();
+    size_t next_set_box = 0;
     lcm::LogFile in(in_path, "r");
     if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
     std::unique_ptr<lcm::LogFile> out;
@@ -339,8 +371,19 @@ int main(int argc, char** argv) {
       if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       if (!input) continue;
       const int64_t seq = seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24)));
+      if (align_inits && ev->channel == tc::kTrackerInit.name) {
+        tracker_init_t m{};
+        if (m.decode(ev->data, 0, ev->datalen) > 0 && m.command == tracker_init_t::COMMAND_SET_BOX &&
+            align.frame_of(next_set_box++))
+          continue;  // given before the frame it was started on
+      }
       if (!pacing.give(ev->channel, seq)) continue;
       ++n_inputs;
+      if (align_inits && ev->channel == tc::kCamera.name)
+        for (const size_t i : align.due_before(seq)) {
+          node.publish_raw(tc::kTrackerInit.name, set_boxes[i].second.data(), set_boxes[i].second.size());
+          node.drain();
+        }
       if (pair_hold && pair_hold->pairs(ev->channel)) {
         for (const auto& m : pair_hold->add(ev->channel, seq, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen))) {
           node.set_log_time(m.timestamp);
