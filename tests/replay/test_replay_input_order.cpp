@@ -4,13 +4,14 @@
 // or with every frame after its track (the recorder's frames socket served late) WHEN hands is replayed THEN
 // every HAND_OBS is given again, unchanged. InitAlign (init_align.hpp): known answers; and GIVEN a tracker
 // log with a manual box, rewritten with the TRACKER_INIT 3 frames after the frame it was started on WHEN the
-// tracker is replayed THEN every USER_TRACK is given again, unchanged.
+// tracker is replayed THEN every USER_TRACK is given again, unchanged; the same for a RESET.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -186,38 +187,71 @@ void copy_log(const std::string& from, const std::string& to, const tracker_init
   }
 }
 
-TEST(InitAlign, TheTrackerReplaysAManualBoxTheLogHasThreeFramesLate) {
+// GIVEN the committed tracker log with `init` after its 60th frame, and the tracker's outputs on it (which must
+// show the init's effect: `acted`) WHEN the TRACKER_INIT is written 3 frames after the frame it took effect on
+// and the tracker replayed THEN every USER_TRACK is the one the tracker gave with the init where it was.
+void replays_an_init_written_three_frames_late(const tracker_init_t& init,
+                                               const std::function<bool(const user_track_t& before, const user_track_t&)>& acted) {
   const std::string tmp = std::filesystem::temp_directory_path() / ("gpilot-init-" + std::to_string(getpid()));
   const std::string config = std::string(GPILOT_SOURCE_DIR) + "/deploy/config/synthetic.yaml";
   const std::string replay = std::string(GPILOT_BIN_DIR) + "/gpilot-replay ";
-  // GIVEN the committed tracker log with a manual box after its 60th frame, and the tracker's outputs on it
+  copy_log(std::string(GPILOT_SOURCE_DIR) + "/tests/replay/logs/tracker.lcmlog", tmp + "-a.lcmlog", &init, 60, 0);
+  const test::CommandOutput made = test::run_command(replay + tmp + "-a.lcmlog --stage tracker --config " + config +
+                                                     " --out " + tmp + "-b.lcmlog 2>&1");
+  ASSERT_EQ(made.code, 0) << made.out;
+  int effects = 0;
+  {
+    lcm::LogFile b(tmp + "-b.lcmlog", "r");
+    user_track_t before{};
+    for (const lcm::LogEvent* ev = b.readNextEvent(); ev; ev = b.readNextEvent()) {
+      user_track_t t{};
+      if (ev->channel != "USER_TRACK" || t.decode(ev->data, 0, ev->datalen) <= 0) continue;
+      effects += acted(before, t);
+      before = t;
+    }
+  }
+  ASSERT_GT(effects, 0) << "the init did nothing visible: the test proves nothing";
+  copy_log(tmp + "-b.lcmlog", tmp + "-c.lcmlog", nullptr, 0, 3);
+  const test::CommandOutput r = test::run_command(replay + tmp + "-c.lcmlog --stage tracker --check --config " + config + " 2>&1");
+  if (!::testing::Test::HasFailure())
+    for (const char* s : {"-a.lcmlog", "-b.lcmlog", "-c.lcmlog"}) std::filesystem::remove(tmp + s);
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\n0 differences"), std::string::npos) << r.out;
+}
+
+TEST(InitAlign, TheTrackerReplaysAManualBoxTheLogHasThreeFramesLate) {
   tracker_init_t init{};
   init.seq = 1;
   init.command = tracker_init_t::COMMAND_SET_BOX;
   init.box[0] = 200, init.box[1] = 100, init.box[2] = 80, init.box[3] = 200;
   init.source = "test";
-  copy_log(std::string(GPILOT_SOURCE_DIR) + "/tests/replay/logs/tracker.lcmlog", tmp + "-a.lcmlog", &init, 60, 0);
-  const test::CommandOutput made = test::run_command(replay + tmp + "-a.lcmlog --stage tracker --config " + config +
-                                                     " --out " + tmp + "-b.lcmlog 2>&1");
-  ASSERT_EQ(made.code, 0) << made.out;
-  int manual_starts = 0;
-  {
-    lcm::LogFile b(tmp + "-b.lcmlog", "r");
-    for (const lcm::LogEvent* ev = b.readNextEvent(); ev; ev = b.readNextEvent()) {
-      user_track_t t{};
-      if (ev->channel == "USER_TRACK" && t.decode(ev->data, 0, ev->datalen) > 0 && t.init_source == user_track_t::INIT_MANUAL &&
-          std::abs(t.box[0] - 200.0f) < 1.0f)
-        ++manual_starts;
-    }
-  }
-  ASSERT_GT(manual_starts, 0) << "the manual box was not started on: the test proves nothing";
-  // WHEN the TRACKER_INIT is written 3 frames after the frame it was started on, and the tracker replayed
-  copy_log(tmp + "-b.lcmlog", tmp + "-c.lcmlog", nullptr, 0, 3);
-  const test::CommandOutput r = test::run_command(replay + tmp + "-c.lcmlog --stage tracker --check --config " + config + " 2>&1");
-  if (!::testing::Test::HasFailure()) for (const char* s : {"-a.lcmlog", "-b.lcmlog", "-c.lcmlog"}) std::filesystem::remove(tmp + s);
-  // THEN every USER_TRACK is the one the tracker gave with the box where it was
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("\n0 differences"), std::string::npos) << r.out;
+  replays_an_init_written_three_frames_late(init, [](const user_track_t&, const user_track_t& t) {
+    return t.init_source == user_track_t::INIT_MANUAL && std::abs(t.box[0] - 200.0f) < 1.0f;
+  });
+}
+
+TEST(InitAlign, TheTrackerReplaysAResetTheLogHasThreeFramesLate) {
+  tracker_init_t init{};
+  init.seq = 1;
+  init.command = tracker_init_t::COMMAND_RESET;
+  init.source = "test";
+  replays_an_init_written_three_frames_late(init, [](const user_track_t& before, const user_track_t& t) {
+    return before.status == user_track_t::STATUS_TRACKING &&
+           (t.status != user_track_t::STATUS_TRACKING || t.track_id != before.track_id);
+  });
+}
+
+TEST(InitAlign, AResetIsGivenBeforeTheFrameTheTrackWasDroppedOn) {
+  InitAlign a;
+  for (int64_t s = 1; s <= 9; ++s) a.frame(s);
+  a.reset();            // logged after frame 9, acted on frame 7
+  a.dropped(7);
+  a.dropped(40);        // another drop, too far
+  a.frame(60);
+  a.reset();            // logged after 60: no drop within 10 frames
+  a.finish();
+  EXPECT_EQ(a.frame_of(0), std::optional<int64_t>(7));
+  EXPECT_FALSE(a.frame_of(1));
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 // config the live stage published on CONFIG (unless --config or --set say otherwise). A timer-driven stage
 // (flight) has its timer fired at the instants the live one's fired, with the inputs it had then
 // (ReplayTicks), on the log's clock. A stage that pairs two inputs by seq gets each pair as the live one
-// worked it, whatever order the log heard them in (PairHold); a manual TRACKER_INIT box before the frame the live
-// tracker started it on (InitAlign).
+// worked it, whatever order the log heard them in (PairHold); a TRACKER_INIT (a manual box, a reset) before the
+// frame the live tracker acted on it (InitAlign).
 // This is how a bug seen in the field is reproduced on a desk.
 #include <algorithm>
 #include <cstdio>
@@ -221,12 +221,13 @@ int main(int argc, char** argv) {
     const bool align_inits = std::find(chain.begin(), chain.end(), "tracker") != chain.end() &&
                              inputs.count(tc::kTrackerInit.name) && inputs.count(tc::kCamera.name);
     InitAlign align;
-    std::vector<std::pair<int64_t, std::vector<uint8_t>>> set_boxes;  // log time, bytes: every SET_BOX in order
+    std::vector<std::pair<int64_t, std::vector<uint8_t>>> inits_logged;  // log time, bytes: every init in order
     {
       const std::set<std::string> paced_outputs = pacing.output_channels();
       lcm::LogFile scan(in_path, "r");
       if (!scan.good()) throw std::runtime_error(in_path + ": cannot open log");
       int32_t last_track_id = -1;
+      int8_t last_status = -1;
       for (const lcm::LogEvent* ev = scan.readNextEvent(); ev; ev = scan.readNextEvent()) {
         if (align_inits) {
           const auto* p = static_cast<const uint8_t*>(ev->data);
@@ -235,15 +236,21 @@ int main(int argc, char** argv) {
           } else if (ev->channel == tc::kUserTrack.name) {
             user_track_t t{};
             if (t.decode(ev->data, 0, ev->datalen) > 0) {
-              if (t.init_source == user_track_t::INIT_MANUAL && t.track_id != last_track_id)
+              const bool new_track = t.track_id != last_track_id;
+              if (t.init_source == user_track_t::INIT_MANUAL && new_track)
                 align.manual_start(t.seq, {t.box[0], t.box[1], t.box[2], t.box[3]});
+              else if (last_status == user_track_t::STATUS_TRACKING && (t.status != user_track_t::STATUS_TRACKING || new_track))
+                align.dropped(t.seq);
               last_track_id = t.track_id;
+              last_status = t.status;
             }
           } else if (ev->channel == tc::kTrackerInit.name) {
             tracker_init_t m{};
-            if (m.decode(ev->data, 0, ev->datalen) > 0 && m.command == tracker_init_t::COMMAND_SET_BOX) {
-              align.set_box({m.box[0], m.box[1], m.box[2], m.box[3]});
-              set_boxes.emplace_back(ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
+            if (m.decode(ev->data, 0, ev->datalen) > 0 &&
+                (m.command == tracker_init_t::COMMAND_SET_BOX || m.command == tracker_init_t::COMMAND_RESET)) {
+              if (m.command == tracker_init_t::COMMAND_SET_BOX) align.set_box({m.box[0], m.box[1], m.box[2], m.box[3]});
+              else align.reset();
+              inits_logged.emplace_back(ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
             }
           }
         }
@@ -271,7 +278,7 @@ int main(int argc, char** argv) {
       log_info("%s runs with the config gpilot-%s published in the log", s.c_str(), s.c_str());
     }
     if (align_inits) align.finish();
-    size_t next_set_box = 0;
+    size_t next_init = 0;
     lcm::LogFile in(in_path, "r");
     if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
     std::unique_ptr<lcm::LogFile> out;
@@ -373,15 +380,16 @@ int main(int argc, char** argv) {
       const int64_t seq = seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24)));
       if (align_inits && ev->channel == tc::kTrackerInit.name) {
         tracker_init_t m{};
-        if (m.decode(ev->data, 0, ev->datalen) > 0 && m.command == tracker_init_t::COMMAND_SET_BOX &&
-            align.frame_of(next_set_box++))
-          continue;  // given before the frame it was started on
+        if (m.decode(ev->data, 0, ev->datalen) > 0 &&
+            (m.command == tracker_init_t::COMMAND_SET_BOX || m.command == tracker_init_t::COMMAND_RESET) &&
+            align.frame_of(next_init++))
+          continue;  // given before the frame it took effect on
       }
       if (!pacing.give(ev->channel, seq)) continue;
       ++n_inputs;
       if (align_inits && ev->channel == tc::kCamera.name)
         for (const size_t i : align.due_before(seq)) {
-          node.publish_raw(tc::kTrackerInit.name, set_boxes[i].second.data(), set_boxes[i].second.size());
+          node.publish_raw(tc::kTrackerInit.name, inits_logged[i].second.data(), inits_logged[i].second.size());
           node.drain();
         }
       if (pair_hold && pair_hold->pairs(ev->channel)) {
