@@ -32,6 +32,16 @@ tjhandle thread_jpeg_handle() {
 tjhandle jpeg_decompressor() { return thread_jpeg_handle<tjInitDecompress>(); }
 tjhandle jpeg_compressor() { return thread_jpeg_handle<tjInitCompress>(); }
 
+// The header as the stages' decoder reads it: "" and its size, or why they could not decode the JPEG.
+std::string decoder_header(tjhandle tj, const uint8_t* data, size_t size, int& width, int& height) {
+  int subsamp = 0, colourspace = 0;
+  if (tjDecompressHeader3(tj, const_cast<uint8_t*>(data), static_cast<unsigned long>(size), &width, &height, &subsamp,
+                          &colourspace) != 0)
+    return "JPEG data does not decode";
+  if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK) return "JPEG decodes to an unsupported pixel type";
+  return "";
+}
+
 }  // namespace
 
 bool jpeg_chroma_from_name(const std::string& name, JpegChroma& out) {
@@ -79,11 +89,9 @@ std::string jpeg_to_image(const uint8_t* data, size_t size, int64_t utime, int64
   if (!bad.empty()) return bad;
   tjhandle tj = jpeg_decompressor();
   if (!tj) return "JPEG decoder could not be made";
-  int tj_w = 0, tj_h = 0, subsamp = 0, colourspace = 0;
-  if (tjDecompressHeader3(tj, const_cast<uint8_t*>(data), static_cast<unsigned long>(size), &tj_w, &tj_h, &subsamp,
-                          &colourspace) != 0)
-    return std::string("JPEG header does not decode: ") + tjGetErrorStr2(tj);
-  if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK) return "JPEG of an unsupported pixel type (CMYK)";
+  int tj_w = 0, tj_h = 0;
+  const std::string undecodable = decoder_header(tj, data, size, tj_w, tj_h);
+  if (!undecodable.empty()) return undecodable;
   out.utime = utime;
   out.seq = seq;
   out.width = width;
@@ -122,13 +130,13 @@ std::string image_to_mat(const image_t& msg, cv::Mat& out, const ImageLimits& li
     // libjpeg still decodes) is accepted as cv::imdecode accepts it; an error is a rejection.
     tjhandle tj = jpeg_decompressor();
     if (!tj) return "JPEG decoder could not be made";
-    int tj_w = 0, tj_h = 0, subsamp = 0, colourspace = 0;
+    int tj_w = 0, tj_h = 0;
     unsigned char* src = const_cast<uint8_t*>(msg.data.data());
     const unsigned long src_size = static_cast<unsigned long>(msg.data.size());
-    if (tjDecompressHeader3(tj, src, src_size, &tj_w, &tj_h, &subsamp, &colourspace) != 0) return "JPEG data does not decode";
+    const std::string undecodable = decoder_header(tj, src, msg.data.size(), tj_w, tj_h);
+    if (!undecodable.empty()) return undecodable;
     if (tj_w != msg.width || tj_h != msg.height)
       return "JPEG decodes to " + dims(tj_w, tj_h) + " but the message says " + dims(msg.width, msg.height);
-    if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK) return "JPEG decodes to an unsupported pixel type";
     cv::Mat decoded = reusable;
     decoded.create(msg.height, msg.width, CV_8UC3);  // reallocates only for another size
     if (tjDecompress2(tj, src, src_size, decoded.data, msg.width, static_cast<int>(decoded.step), msg.height, TJPF_BGR, 0) != 0 &&

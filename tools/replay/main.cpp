@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -50,6 +51,18 @@ int64_t int64_at(const std::vector<uint8_t>& d, size_t at) {
 }
 int64_t utime_of(const std::vector<uint8_t>& d) { return int64_at(d, 8); }
 int64_t seq_of(const std::vector<uint8_t>& d) { return int64_at(d, 16); }
+int64_t seq_of_event(const lcm::LogEvent& ev) {
+  const auto* p = static_cast<const uint8_t*>(ev.data);
+  return seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev.datalen, 24)));
+}
+
+// A TRACKER_INIT the replay aligns (InitAlign): a manual box or a reset, decoded.
+std::optional<tracker_init_t> aligned_init(const lcm::LogEvent& ev) {
+  tracker_init_t m{};
+  if (m.decode(ev.data, 0, ev.datalen) <= 0) return std::nullopt;
+  if (m.command != tracker_init_t::COMMAND_SET_BOX && m.command != tracker_init_t::COMMAND_RESET) return std::nullopt;
+  return m;
+}
 
 // The replay's outputs against the recorded ones, message by message, paired by (utime, seq): one output the
 // logger lost (or one the replay did not give) is one difference, not a shift of every message after it.
@@ -221,7 +234,7 @@ int main(int argc, char** argv) {
     const bool align_inits = std::find(chain.begin(), chain.end(), "tracker") != chain.end() &&
                              inputs.count(tc::kTrackerInit.name) && inputs.count(tc::kCamera.name);
     InitAlign align;
-    std::vector<std::pair<int64_t, std::vector<uint8_t>>> inits_logged;  // log time, bytes: every init in order
+    std::vector<std::vector<uint8_t>> inits_logged;  // every aligned init's bytes, in log order
     {
       const std::set<std::string> paced_outputs = pacing.output_channels();
       lcm::LogFile scan(in_path, "r");
@@ -230,9 +243,8 @@ int main(int argc, char** argv) {
       int8_t last_status = -1;
       for (const lcm::LogEvent* ev = scan.readNextEvent(); ev; ev = scan.readNextEvent()) {
         if (align_inits) {
-          const auto* p = static_cast<const uint8_t*>(ev->data);
           if (ev->channel == tc::kCamera.name) {
-            align.frame(seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
+            align.frame(seq_of_event(*ev));
           } else if (ev->channel == tc::kUserTrack.name) {
             user_track_t t{};
             if (t.decode(ev->data, 0, ev->datalen) > 0) {
@@ -245,18 +257,16 @@ int main(int argc, char** argv) {
               last_status = t.status;
             }
           } else if (ev->channel == tc::kTrackerInit.name) {
-            tracker_init_t m{};
-            if (m.decode(ev->data, 0, ev->datalen) > 0 &&
-                (m.command == tracker_init_t::COMMAND_SET_BOX || m.command == tracker_init_t::COMMAND_RESET)) {
-              if (m.command == tracker_init_t::COMMAND_SET_BOX) align.set_box({m.box[0], m.box[1], m.box[2], m.box[3]});
+            if (const auto m = aligned_init(*ev)) {
+              if (m->command == tracker_init_t::COMMAND_SET_BOX) align.set_box({m->box[0], m->box[1], m->box[2], m->box[3]});
               else align.reset();
-              inits_logged.emplace_back(ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
+              const auto* p = static_cast<const uint8_t*>(ev->data);
+              inits_logged.emplace_back(p, p + ev->datalen);
             }
           }
         }
         if (paced_outputs.count(ev->channel)) {
-          const auto* p = static_cast<const uint8_t*>(ev->data);
-          pacing.recorded(ev->channel, seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24))));
+          pacing.recorded(ev->channel, seq_of_event(*ev));
         } else if (!cli.config_given() && ev->channel == process_channels::kConfig.name) {
           config_t c{};
           if (c.decode(ev->data, 0, ev->datalen) > 0 && check_message(c).empty()) logged_yaml.emplace(c.process, c.yaml);
@@ -377,19 +387,14 @@ int main(int argc, char** argv) {
       const bool input = inputs.count(ev->channel) > 0;
       if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
       if (!input) continue;
-      const int64_t seq = seq_of(std::vector<uint8_t>(p, p + std::min<int32_t>(ev->datalen, 24)));
-      if (align_inits && ev->channel == tc::kTrackerInit.name) {
-        tracker_init_t m{};
-        if (m.decode(ev->data, 0, ev->datalen) > 0 &&
-            (m.command == tracker_init_t::COMMAND_SET_BOX || m.command == tracker_init_t::COMMAND_RESET) &&
-            align.frame_of(next_init++))
-          continue;  // given before the frame it took effect on
-      }
+      const int64_t seq = seq_of_event(*ev);
+      if (align_inits && ev->channel == tc::kTrackerInit.name && aligned_init(*ev) && align.frame_of(next_init++))
+        continue;  // given before the frame it took effect on
       if (!pacing.give(ev->channel, seq)) continue;
       ++n_inputs;
       if (align_inits && ev->channel == tc::kCamera.name)
         for (const size_t i : align.due_before(seq)) {
-          node.publish_raw(tc::kTrackerInit.name, inits_logged[i].second.data(), inits_logged[i].second.size());
+          node.publish_raw(tc::kTrackerInit.name, inits_logged[i].data(), inits_logged[i].size());
           node.drain();
         }
       if (pair_hold && pair_hold->pairs(ev->channel)) {
