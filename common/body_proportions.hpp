@@ -24,4 +24,12 @@ inline cv::Rect2d body_from_face(const cv::Rect2d& face, const BodyProportions& 
   return cv::Rect2d(cx - w / 2, face.y - p.top_in_faces * face.height, w, h);
 }
 
+// Where a body box puts the face: body_from_face's inverse.
+inline cv::Rect2d face_from_body(const cv::Rect2d& body, const BodyProportions& p) {
+  const double fw = body.width / p.width_in_faces;
+  const double fh = body.height / p.height_in_faces;
+  const double cx = body.x + body.width / 2 - p.centre_in_faces * fw;
+  return cv::Rect2d(cx - fw / 2, body.y + p.top_in_faces * fh, fw, fh);
+}
+
 }  // namespace gpilot

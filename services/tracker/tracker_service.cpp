@@ -94,6 +94,8 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
     if (!refused.empty()) detail += "; faces refused: " + refused;
     if (const int64_t n = tracker.other_faces(); n > 0)
       detail += "; faces not the user's (other clothes): " + std::to_string(n);
+    if (const int64_t n = tracker.off_user(); n > 0)
+      detail += "; tracks dropped off the user (no face, other clothes): " + std::to_string(n);
     node.set_state(out.status == gpilot::TrackStatus::kTracking ? gpilot::health_t::STATE_OK
                                                                 : gpilot::health_t::STATE_DEGRADED,
                    detail);

@@ -79,14 +79,14 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   // A face below half the expected width is not this user's (the scale gate below): not searched enlarged.
   const auto face = faces_.detect(frame, roi, fw / 2);
-  if (!face) return in_view ? FaceCheck::Missed : FaceCheck::OutOfView;
+  if (!face) return in_view ? missed_face(frame) : FaceCheck::OutOfView;
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
   // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.
   const cv::Rect2d body = body_from_face(face->face, track_body_);
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
-  if (scale > std::log(2.0)) return FaceCheck::Missed;  // not this user's face
+  if (scale > std::log(2.0)) return missed_face(frame);  // not this user's face
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
     ++other_faces_;
@@ -97,6 +97,16 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
     start(frame, body, out_.init, false);
   found_face(frame, face->face);
   return FaceCheck::Found;
+}
+
+// No face of the user's size where the box puts it. The user may have turned away, or the box slid off them:
+// onto a look-alike who crossed in front (their face, nearer, twice the size) and then onto the background,
+// at a PSR that stayed well above face_miss_psr (scenario bystander: 40 s on a wall, flown on). The torso
+// where the box puts it tells which: the user's clothes, a miss; other colours, the box is not on the user.
+UserTracker::FaceCheck UserTracker::missed_face(const cv::Mat& frame) {
+  if (wears_users_clothes(frame, face_from_body(out_.box, track_body_))) return FaceCheck::Missed;
+  ++off_user_;
+  return FaceCheck::OffUser;
 }
 
 // Whether the torso under a face wears the track's clothes (recheck_min_torso_match); true when there is
@@ -192,9 +202,10 @@ void UserTracker::track_frame(const cv::Mat& frame) {
     // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
     // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
     const FaceCheck check = recheck_face(frame);
-    if (check == FaceCheck::Other) {
-      // Where the box puts the face there is someone else's (other clothes): the box is on them, or they
-      // are in front of the user. Not flown on; the search (which refuses them while LOST) finds the user.
+    if (check == FaceCheck::Other || check == FaceCheck::OffUser) {
+      // Where the box puts the face there is someone else's (other clothes), or no face and not the user's
+      // clothes: the box is on someone else or the background, or someone stands in front of the user. Not
+      // flown on; the search (which refuses other clothes while LOST) finds the user.
       lose(false);
       return;
     }

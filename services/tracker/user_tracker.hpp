@@ -60,6 +60,8 @@ class UserTracker {
   int64_t refusals(FaceRefusal why) const { return refusals_[static_cast<size_t>(why)]; }
   //! Faces the re-check found whose torso did not wear the user's clothes (recheck_min_torso_match): not re-anchored on.
   int64_t other_faces() const { return other_faces_; }
+  //! Re-checks that found neither the user's face nor their clothes where the box puts them: the track dropped.
+  int64_t off_user() const { return off_user_; }
   //! The ratios of the current track's body box to its face (the preset, or fitted when it started on a face).
   const BodyProportions& track_body() const { return track_body_; }
 
@@ -70,8 +72,11 @@ class UserTracker {
   void track_frame(const cv::Mat& frame);
   void lost_frame(const cv::Mat& frame);
   void lose(bool model_trusted);
-  enum class FaceCheck { Found, Missed, OutOfView, Other };  // Other: a face in other clothes than the user's
+  // Other: a face in other clothes than the user's; OffUser: no user's face, and the torso where the box
+  // puts it is not in the user's clothes.
+  enum class FaceCheck { Found, Missed, OutOfView, Other, OffUser };
   FaceCheck recheck_face(const cv::Mat& frame);
+  FaceCheck missed_face(const cv::Mat& frame);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
 
@@ -94,6 +99,7 @@ class UserTracker {
   bool redetect_ok_ = false;   //!< the last good filter may re-find the target (not after a face-miss loss)
   int64_t searches_ = 0;       //!< face searches since the last track, for the full/local alternation
   int64_t other_faces_ = 0;
+  int64_t off_user_ = 0;
   std::vector<float> torso_colours_;  //!< the user's torso chromaticity (tracks from a face; empty: no gate)
 };
 

@@ -70,11 +70,15 @@ class Runner {
   std::string name_;
 };
 
+// starts_itself (--auto-init): the box is not given; the tracker's own face search starts the track, as in the
+// service, and the track then knows the user's clothes (a manual box's does not: its re-checks are not gated
+// by them, and a look-alike's face re-anchored it).
 class UserTrackerRunner : public Runner {
  public:
-  explicit UserTrackerRunner(const TrackerParams& p) : Runner("gpilot UserTracker"), t_(p) {}
+  UserTrackerRunner(const TrackerParams& p, bool starts_itself)
+      : Runner("gpilot UserTracker"), t_(p), starts_itself_(starts_itself) {}
   void init(const cv::Mat& frame, const cv::Rect2d& box) override {
-    t_.set_box(box);
+    if (!starts_itself_) t_.set_box(box);
     t_.process(frame);
   }
   bool searching() const override { return t_.last().status != TrackStatus::kTracking; }
@@ -88,6 +92,7 @@ class UserTrackerRunner : public Runner {
 
  private:
   UserTracker t_;
+  bool starts_itself_;
 };
 
 class DsstRunner : public Runner {
@@ -213,7 +218,7 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
   }
 
   std::vector<std::unique_ptr<Runner>> runners;
-  runners.push_back(std::make_unique<UserTrackerRunner>(params));
+  runners.push_back(std::make_unique<UserTrackerRunner>(params, auto_init));
   runners.push_back(std::make_unique<DsstRunner>(params.dsst));
   if (compare) {
     runners.push_back(std::make_unique<OpenCvRunner>("OpenCV CSRT", cv::TrackerCSRT::create()));
@@ -402,7 +407,8 @@ int main(int argc, char** argv) {
   app.add_option("sequence", seq, "OTB-layout folder: img/*.jpg and groundtruth_rect.txt (1-based) or init_rect.txt (0-based)");
   app.add_option("--log", log, "LCM log with CAMERA and GROUND_TRUTH instead of a folder");
   app.add_option("--synthetic", synthetic, "a synthetic-world scenario (e.g. tour) instead of a folder; truth = its user box");
-  app.add_flag("--auto-init", auto_init, "start from the face detector's body box instead of the first ground truth");
+  app.add_flag("--auto-init", auto_init, "start from the face detector's body box instead of the first ground truth (our UserTracker from its "
+                 "own face search, as in the service)");
   app.add_flag("--compare", compare, "also run OpenCV CSRT, KCF, MOSSE and dlib correlation_tracker on the same frames");
   app.add_flag("--json", json, "print one JSON object on stdout");
   app.add_option("--plot", plot, "write the success plot to this PNG");

@@ -121,6 +121,22 @@ TEST(BodyFit, BodyBesideTheFaceMovesTheBoxWithinTheBound) {
   EXPECT_EQ(fit_body(near.img, near.face, kPreset, p).box, body_from_face(near.face, kPreset));
 }
 
+// face_from_body: where a box puts the face, for the re-check's torso test; body_from_face's inverse, also for a
+// box fitted off the face's centre.
+TEST(BodyProportions, FaceFromBodyInvertsBodyFromFace) {
+  BodyProportions fitted = kPreset;
+  fitted.width_in_faces = 2.2;
+  fitted.centre_in_faces = -0.3;
+  for (const BodyProportions& p : {kPreset, fitted}) {
+    const cv::Rect2d face(301.5, 62.25, 40, 44);
+    const cv::Rect2d back = face_from_body(body_from_face(face, p), p);
+    EXPECT_NEAR(back.x, face.x, 1e-9);
+    EXPECT_NEAR(back.y, face.y, 1e-9);
+    EXPECT_NEAR(back.width, face.width, 1e-9);
+    EXPECT_NEAR(back.height, face.height, 1e-9);
+  }
+}
+
 TEST(BodyFit, FaceNearTheBottomEdgeIsRefused) {
   // GIVEN a face whose chin is 10 px above the frame's bottom (the body below the image)
   const Drawn d = draw_person({640, 480}, {300, 430}, 40, 2.75, 7.0);
