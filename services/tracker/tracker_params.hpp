@@ -256,6 +256,11 @@ struct TrackerParams {
   // and the drone followed them (scenario bystander). 0: off (manual tracks and grey frames have no torso
   // colours: never gated).
   double recheck_min_torso_match = 0.5;
+  // And once SEARCHING: for user_memory_frames more, a face must still wear the lost user's clothes to start a
+  // track; then any face may be the user (a user who changed clothes or light; gpilot-ctl's RESET forgets them
+  // at once). A user who stepped out of view for over lost_search_frames handed the drone to whoever stood
+  // in view (TrackerBystander.ALookAlikeIsNotTakenWhileTheUserIsAway).
+  int user_memory_frames = 250;        //!< 0: any face once SEARCHING
   // A re-check that finds a face in other clothes where the box puts the face makes the track LOST (the box
   // is on someone else, or they stand in front of the user); on a frame whose PSR is below weak_recheck_psr such
   // a track is re-checked already after weak_recheck_frames: a look-alike walking in front took the filter with
@@ -289,6 +294,7 @@ struct TrackerParams {
     v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");
     v("face_miss_psr", face_miss_psr, 0.0, 1000.0, "a re-check miss counts only when the frame's PSR is below this");
     v("recheck_min_torso_match", recheck_min_torso_match, 0.0, 1.0, "re-check: a face whose torso colours match the track's less is not the user's (0: off)");
+    v("user_memory_frames", user_memory_frames, 0, 1000000, "frames SEARCHING during which a face must still wear the lost user's clothes (0 = any face)");
     v("weak_recheck_frames", weak_recheck_frames, 1, 100000, "a track that knows the user's clothes is re-checked this often while PSR < weak_recheck_psr, frames");
     v("weak_recheck_psr", weak_recheck_psr, 0.0, 1000.0, "PSR below which such a track is re-checked every weak_recheck_frames (0: never early)");
     v("torso_colour_rate", torso_colour_rate, 0.0, 1.0, "blend rate of the track's torso colours at each matching re-check");

@@ -28,6 +28,7 @@ void UserTracker::reset() {
   out_.face.reset();
   bad_frames_ = 0;
   searches_ = 0;
+  torso_colours_.clear();  // whoever comes is the user (RESET: a new user)
   faces_.restart_scan();
 }
 
@@ -79,14 +80,14 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   // A face below half the expected width is not this user's (the scale gate below): not searched enlarged.
   const auto face = faces_.detect(frame, roi, fw / 2);
-  if (!face) return in_view ? missed_face(frame) : FaceCheck::OutOfView;
+  if (!face) return missed_face(frame, in_view ? FaceCheck::Missed : FaceCheck::OutOfView);
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
   // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.
   const cv::Rect2d body = body_from_face(face->face, track_body_);
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
-  if (scale > std::log(2.0)) return missed_face(frame);  // not this user's face
+  if (scale > std::log(2.0)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
     ++other_faces_;
@@ -101,10 +102,11 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
 
 // No face of the user's size where the box puts it. The user may have turned away, or the box slid off them:
 // onto a look-alike who crossed in front (their face, nearer, twice the size) and then onto the background,
-// at a PSR that stayed well above face_miss_psr (scenario bystander: 40 s on a wall, flown on). The torso
-// where the box puts it tells which: the user's clothes, a miss; other colours, the box is not on the user.
-UserTracker::FaceCheck UserTracker::missed_face(const cv::Mat& frame) {
-  if (wears_users_clothes(frame, face_from_body(out_.box, track_body_))) return FaceCheck::Missed;
+// at a PSR that stayed well above face_miss_psr (scenario bystander: 40 s on a wall, flown on), or held the
+// image's edge after a user who walked out of view. The torso where the box puts it (the part in view) tells
+// which: the user's clothes, `users` (a miss, or out of view); other colours, the box is not on the user.
+UserTracker::FaceCheck UserTracker::missed_face(const cv::Mat& frame, FaceCheck users) {
+  if (wears_users_clothes(frame, face_from_body(out_.box, track_body_))) return users;
   ++off_user_;
   return FaceCheck::OffUser;
 }
@@ -145,8 +147,10 @@ bool UserTracker::search(const cv::Mat& frame) {
   // (counted) and the next one tried; else the box is fitted to the person.
   for (const FaceDetection& face : faces) {
     // While LOST the user is known: a face in other clothes is someone else's (a look-alike who walked in
-    // front took the track with them). Once SEARCHING, the box dropped, any face may be the user.
-    if (out_.status == TrackStatus::kLost && !wears_users_clothes(frame, face.face)) {
+    // front took the track with them). Once SEARCHING, the box dropped, still for user_memory_frames; then
+    // any face may be the user.
+    const bool remembered = out_.status == TrackStatus::kLost || searching_for_ < p_.user_memory_frames;
+    if (remembered && !wears_users_clothes(frame, face.face)) {
       ++other_faces_;
       continue;
     }
@@ -245,6 +249,7 @@ void UserTracker::lost_frame(const cv::Mat& frame) {
     out_.status = TrackStatus::kSearching;
     out_.box = cv::Rect2d();
     searches_ = 0;
+    searching_for_ = 0;
   }
 }
 
@@ -273,7 +278,10 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
   switch (out_.status) {
     case TrackStatus::kTracking: track_frame(frame); break;
     case TrackStatus::kLost: lost_frame(frame); break;
-    case TrackStatus::kSearching: search(frame); break;
+    case TrackStatus::kSearching:
+      search(frame);
+      ++searching_for_;
+      break;
   }
   return out_;
 }

@@ -47,7 +47,7 @@ class UserTracker {
 
   // Asks for a track on box from the next frame on. "" if accepted, else why not (non-finite, < 2 px).
   std::string set_box(const cv::Rect2d& box);
-  // Drops the track (and a pending box) and searches for a face again.
+  // Drops the track (and a pending box) and the user's clothes (any face may be the user), and searches again.
   void reset();
 
   // One frame (CV_8UC3 or CV_8UC1). Throws std::invalid_argument for an unusable frame, without
@@ -76,7 +76,7 @@ class UserTracker {
   // puts it is not in the user's clothes.
   enum class FaceCheck { Found, Missed, OutOfView, Other, OffUser };
   FaceCheck recheck_face(const cv::Mat& frame);
-  FaceCheck missed_face(const cv::Mat& frame);
+  FaceCheck missed_face(const cv::Mat& frame, FaceCheck users);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
 
@@ -95,6 +95,7 @@ class UserTracker {
   int frames_since_face_ = 0;
   int face_misses_ = 0;
   int lost_for_ = 0;           //!< frames LOST so far
+  int searching_for_ = 0;      //!< frames SEARCHING since the track was lost (user_memory_frames)
   int redetect_hits_ = 0;      //!< LOST frames in a row where the last good filter's PSR was >= redetect_psr
   bool redetect_ok_ = false;   //!< the last good filter may re-find the target (not after a face-miss loss)
   int64_t searches_ = 0;       //!< face searches since the last track, for the full/local alternation

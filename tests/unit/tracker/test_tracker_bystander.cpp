@@ -139,6 +139,56 @@ duration_s: 10
   EXPECT_GT(tracker.off_user(), 0);
 }
 
+// The user steps 4 m aside (out of view in 0.8 s) for 6 s while a look-alike in other clothes stands beside
+// where they were. LOST at 2.4 s, SEARCHING from 4.4 s (lost_search_frames): a face there used to be taken as
+// the user's, and the drone handed to the look-alike. For user_memory_frames (10 s) a face must still wear
+// the user's clothes: the user is found again once back (9.4 s).
+TEST(TrackerBystander, ALookAlikeIsNotTakenWhileTheUserIsAway) {
+  const char* kAway = R"(
+background: data/backgrounds/building.jpg
+person: {north: 3.0, east: -0.4}
+bystanders:
+  - name: look-alike
+    shirt_bgr: [40, 60, 170]
+    keyframes:
+      - {t: 0, north: 3.0, east: 0.9}
+keyframes:
+  - {t: 0, gesture: REST}
+  - {t: 2, step_m: -4.0, transition_s: 0.8}
+  - {t: 8, step_m: 0.0, transition_s: 0.8}
+duration_s: 12
+)";
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::parse(kAway, "away.yaml"), 1);
+  struct Run {
+    int on_other = 0;  // TRACKING while the user is out of view (from 2.6 s until they step back at 8 s)
+    double iou_at_end = 0;
+  };
+  auto run_with = [&](int memory_frames) {
+    TrackerParams tp;
+    tp.user_memory_frames = memory_frames;
+    UserTracker tracker(tp);
+    Run r;
+    const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
+    for (int i = 0; i < frames; ++i) {
+      const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
+      const TrackOutput out = tracker.process(f.bgr);
+      if (i >= 2.6 * sp.fps && i < 8.0 * sp.fps && out.status == TrackStatus::kTracking) ++r.on_other;
+      if (i == frames - 1)
+        r.iou_at_end = out.status == TrackStatus::kTracking ? iou(out.box, cv::Rect2d(f.truth.user_box)) : 0.0;
+    }
+    return r;
+  };
+  const Run with = run_with(TrackerParams{}.user_memory_frames), without = run_with(0);
+  std::printf("user away 6 s beside a look-alike: TRACKING while away %d frames (without the memory %d); IoU "
+              "with the user at the end %.3f (%.3f)\n",
+              with.on_other, without.on_other, with.iou_at_end, without.iou_at_end);
+  EXPECT_EQ(with.on_other, 0);
+  EXPECT_GT(with.iou_at_end, 0.6);
+  // Without it the look-alike is taken once SEARCHING, and kept after the user is back.
+  EXPECT_GT(without.on_other, 25);
+}
+
 // torso_colours: chromaticity, so a gain on the light leaves it; another shirt does not match.
 TEST(TorsoColours, LightGainKeepsThemAnotherShirtDoesNot) {
   cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(120, 120, 120));
