@@ -301,14 +301,16 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
     res.hand_box = cv::Rect(p.x - half, p.y - half, side, side);
   };
   // The paper's pixel counts suit a user a few metres away; a far user's hand fills less of them.
-  const auto min_skin = [&](int paper) {
-    const double square = params_.min_skin_square_share * side * side;
-    return params_.min_skin_square_share > 0 && square < paper ? static_cast<int>(square) : paper;
+  const auto min_skin = [&](int paper, double share) {
+    const double square = share * side * side;
+    return share > 0 && square < paper ? static_cast<int>(square) : paper;
   };
-  if (res.skin_outside > min_skin(params_.out_min_skin)) {
+  const double out_share = p_out.y > ucy && params_.down_min_skin_square_share > 0 ? params_.down_min_skin_square_share
+                                                                                   : params_.min_skin_square_share;
+  if (res.skin_outside > min_skin(params_.out_min_skin, out_share)) {
     set(HandKind::Out, p_out, f_out, g.shoulder_centre);
   } else if (res.skin_inside > 0 && std::abs(bcx - p_front.x) < params_.front_gate_ratio * g.width &&
-             f_front > min_skin(params_.front_min_skin)) {
+             f_front > min_skin(params_.front_min_skin, params_.min_skin_square_share)) {
     if (cut_body) res.front_out_of_view = true;
     else set(HandKind::Front, p_front, f_front, g.body_centre);
   }

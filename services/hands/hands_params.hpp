@@ -116,6 +116,9 @@ struct HandsParams {
   double min_skin_square_share = 0.25;  //!< both need more than this share of the hand square's area where that is
                                         //!< less than the paper's 30 px: a far user's hand (8-10 m, an 8 px square)
                                         //!< shows 20-35 skin pixels, so 30 lost DOWN and CLOSER there (0 = off; ours)
+  double down_min_skin_square_share = 0.15;  //!< Alg. 1 with its hand below the shoulder line: this share instead
+                                             //!< (out_min_angle_deg leaves out the side of a far DOWN hand nearer
+                                             //!< the body: 11-17 px counted at 9.8-9.9 m; 0 = as above; ours)
   int match_window = 15;            //!< frames/tracks wait this many seqs for their partner, then are dropped
   // Hands that are hand-shaped and within reach (ours, not the paper's: colour alone finds walls, wood and bare
   // forearms on real photos; hands README, ablation table). 0 turns each off.
@@ -162,6 +165,7 @@ struct HandsParams {
     v("front_gate_ratio", front_gate_ratio, 0.0, 1.0, "Alg. 2: |p_bc.x - p.x| below ratio x box width (paper 1/5)");
     v("front_min_skin", front_min_skin, 0, 1000000, "Alg. 2: F_skin needed, more than (paper 30)");
     v("min_skin_square_share", min_skin_square_share, 0.0, 1.0, "Alg. 1 and 2 need at most this share of the hand square's area in skin (small far users; 0 = off; ours)");
+    v("down_min_skin_square_share", down_min_skin_square_share, 0.0, 1.0, "Alg. 1, hand below the shoulder line: at most this share of the hand square in skin outside (0 = min_skin_square_share; ours)");
     v("match_window", match_window, 1, 1000, "CAMERA/USER_TRACK pairing: seqs an unmatched one waits before it is dropped");
     v("max_blob_hand_areas", max_blob_hand_areas, 0.0, 1000.0, "skin component with more hand squares outside the box is no hand (0 = off; ours)");
     v("shoulder_half_ratio", shoulder_half_ratio, 0.0, 2.0, "shoulders this many box widths either side of p_uc");

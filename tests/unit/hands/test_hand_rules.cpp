@@ -281,6 +281,31 @@ TEST_F(RulesTest, AFarUsersSmallHandInFrontIsSeen) {
   EXPECT_EQ(on_mask().kind, HandKind::None);
 }
 
+TEST_F(RulesTest, AFarUsersDownHandIsOutWhereTheAngleRuleLeavesLittleOfIt) {
+  // GIVEN the far box's DOWN hand with its forearm opened away and its side nearer the body under
+  // out_min_angle_deg: a 3x4 hand (12 px) 15.5..17.5 px right of and 26.6..29.6 px below the right shoulder
+  // (175.5, 165.4), 28..33 deg from straight down, within reach (a CI far run at 9.9 m: 11-17 px outside the box)
+  mask(cv::Rect(191, 192, 3, 4)).setTo(1);
+  auto r = on_mask(kFarBox);
+  // THEN OUT, down and out: below the shoulder line Alg. 1 asks more than 0.15 x 64 = 9.6, so 9 px
+  ASSERT_EQ(r.kind, HandKind::Out);
+  EXPECT_EQ(r.skin_outside, 12);
+  EXPECT_GT(r.vector.x, 0);
+  EXPECT_GT(r.vector.y, 0);
+  // AND WHEN it asks the quarter it asks elsewhere (16 px) THEN it is lost, as in that run
+  params.down_min_skin_square_share = 0;
+  EXPECT_EQ(on_mask(kFarBox).kind, HandKind::None);
+  // AND the same 12 px above the shoulder line (out and up) are not enough: 16 there
+  params.down_min_skin_square_share = 0.15;
+  mask.setTo(0);
+  mask(cv::Rect(191, 150, 3, 4)).setTo(1);
+  EXPECT_EQ(on_mask(kFarBox).kind, HandKind::None);
+  // AND a 3x3 speckle (9 px) below it is not enough either
+  mask.setTo(0);
+  mask(cv::Rect(191, 192, 3, 3)).setTo(1);
+  EXPECT_EQ(on_mask(kFarBox).kind, HandKind::None);
+}
+
 TEST_F(RulesTest, AFarUsersTwoPixelArmJoinsTheHandToTheTorso) {
   // GIVEN a green shirt filling the far box's torso rows, a 6x6 hand 27 px left of the box (x 118..123, y 162..167)
   // and a forearm 2 px thick from the hand to the shirt (x 124..149, y 164..165)
