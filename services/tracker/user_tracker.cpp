@@ -161,8 +161,12 @@ bool UserTracker::search(const cv::Mat& frame) {
       continue;
     }
     // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
-    track_body_ = fit.body;
-    start(frame, fit.box, InitSource::kFace);
+    // The user known (their clothes matched), their build is too: the last track's ratios, not a new fit on a body
+    // someone may half hide (a walker in front narrowed a re-found user's box from 86 to 45 px, and the hands
+    // stage then misread their arms for the rest of the run).
+    const bool known = remembered && !torso_colours_.empty();
+    if (!known) track_body_ = fit.body;
+    start(frame, known ? body_from_face(face.face, track_body_) : fit.box, InitSource::kFace);
     torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
     found_face(frame, face.face);
     faces_.restart_scan();  // the next search (after a loss) scans from the first tile
