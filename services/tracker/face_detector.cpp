@@ -14,11 +14,10 @@ namespace gpilot {
 
 cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) { return body_from_face(face, p.body()); }
 
+// Where the box puts the face, a face-and-a-half around it.
 cv::Rect face_recheck_window(const cv::Rect2d& b, const BodyProportions& r) {
-  const double fw = b.width / r.width_in_faces, fh = b.height / r.height_in_faces;
-  const double face_top = b.y + r.top_in_faces * fh;
-  const double face_cx = b.x + b.width / 2 - r.centre_in_faces * fw;
-  return cv::Rect(cv::Rect2d(face_cx - 1.5 * fw, face_top - 0.75 * fh, 3 * fw, 2.5 * fh));
+  const cv::Rect2d f = face_from_body(b, r);
+  return cv::Rect(cv::Rect2d(f.x - f.width, f.y - 0.75 * f.height, 3 * f.width, 2.5 * f.height));
 }
 
 cv::Rect face_recheck_window(const cv::Rect2d& b, const TrackerParams& p) { return face_recheck_window(b, p.body()); }

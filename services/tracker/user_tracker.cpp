@@ -1,6 +1,7 @@
 // Search / track / lost logic of the tracker stage (see user_tracker.hpp).
 #include "user_tracker.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -145,11 +146,12 @@ bool UserTracker::search(const cv::Mat& frame) {
   // Each face's body box is checked against the image before a track starts on it (body_fit.hpp), the
   // largest face first: a face with no body in view under it (on a poster, at the bottom edge) is refused
   // (counted) and the next one tried; else the box is fitted to the person.
+  // While LOST the user is known: a face in other clothes is someone else's (a look-alike who walked in front
+  // took the track with them). Once SEARCHING, the box dropped, still for user_memory_frames; then any face may
+  // be the user. Known, their build is too (below).
+  const bool remembered = out_.status == TrackStatus::kLost || lost_for_ < p_.lost_search_frames + p_.user_memory_frames;
+  const bool known = remembered && !torso_colours_.empty();
   for (const FaceDetection& face : faces) {
-    // While LOST the user is known: a face in other clothes is someone else's (a look-alike who walked in
-    // front took the track with them). Once SEARCHING, the box dropped, still for user_memory_frames; then
-    // any face may be the user.
-    const bool remembered = out_.status == TrackStatus::kLost || searching_for_ < p_.user_memory_frames;
     if (remembered && !wears_users_clothes(frame, face.face)) {
       ++other_faces_;
       continue;
@@ -161,10 +163,9 @@ bool UserTracker::search(const cv::Mat& frame) {
       continue;
     }
     // The whole body box, as the re-check makes it: the part in view, which holds the face, is what DSST follows.
-    // The user known (their clothes matched), their build is too: the last track's ratios, not a new fit on a body
-    // someone may half hide (a walker in front narrowed a re-found user's box from 86 to 45 px, and the hands
-    // stage then misread their arms for the rest of the run).
-    const bool known = remembered && !torso_colours_.empty();
+    // The user known (their clothes matched): the last track's ratios, not a new fit on a body someone may half
+    // hide (a walker in front narrowed a re-found user's box from 86 to 45 px, and the hands stage then misread
+    // their arms for the rest of the run).
     if (!known) track_body_ = fit.body;
     start(frame, known ? body_from_face(face.face, track_body_) : fit.box, InitSource::kFace);
     torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
@@ -253,7 +254,6 @@ void UserTracker::lost_frame(const cv::Mat& frame) {
     out_.status = TrackStatus::kSearching;
     out_.box = cv::Rect2d();
     searches_ = 0;
-    searching_for_ = 0;
   }
 }
 
@@ -284,7 +284,8 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
     case TrackStatus::kLost: lost_frame(frame); break;
     case TrackStatus::kSearching:
       search(frame);
-      ++searching_for_;
+      // user_memory_frames counts on from lost_search_frames (held there: a search may last for days)
+      lost_for_ = std::min(lost_for_ + 1, p_.lost_search_frames + p_.user_memory_frames);
       break;
   }
   return out_;

@@ -94,8 +94,7 @@ class UserTracker {
   int bad_frames_ = 0;
   int frames_since_face_ = 0;
   int face_misses_ = 0;
-  int lost_for_ = 0;           //!< frames LOST so far
-  int searching_for_ = 0;      //!< frames SEARCHING since the track was lost (user_memory_frames)
+  int lost_for_ = 0;           //!< frames since the track was lost (LOST, then SEARCHING: user_memory_frames)
   int redetect_hits_ = 0;      //!< LOST frames in a row where the last good filter's PSR was >= redetect_psr
   bool redetect_ok_ = false;   //!< the last good filter may re-find the target (not after a face-miss loss)
   int64_t searches_ = 0;       //!< face searches since the last track, for the full/local alternation
