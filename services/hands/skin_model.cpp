@@ -24,20 +24,31 @@ int log2_exact(int bins) {
   return -1;
 }
 
-// One pass of a 1-D Gaussian along one axis of a bins^3 volume (zero outside).
+// One pass of a 1-D Gaussian along one axis of a bins^3 volume (zero outside), line by line. The learnt
+// histograms are sparse (a scene, a shirt, a face fill a few hundred of 32768 bins): a line that is all zero
+// stays zero, and is skipped (the smoothing was 15 % of the hands stage's CPU). Each output sums its taps in
+// the same order whether or not lines are skipped, so the result is the same to the bit.
 std::vector<double> blur_axis(const std::vector<double>& in, int bins, int axis, const std::vector<double>& kernel) {
   const int radius = static_cast<int>(kernel.size() / 2);
   const int stride = axis == 0 ? bins * bins : axis == 1 ? bins : 1;
   std::vector<double> out(in.size(), 0.0);
-  for (int i = 0; i < static_cast<int>(in.size()); ++i) {
-    const int pos = (i / stride) % bins;
-    double acc = 0;
-    for (int k = -radius; k <= radius; ++k) {
-      const int q = pos + k;
-      if (q < 0 || q >= bins) continue;
-      acc += kernel[static_cast<size_t>(k + radius)] * in[static_cast<size_t>(i + k * stride)];
+  const int lines = bins * bins;
+  for (int line = 0; line < lines; ++line) {
+    // The first index of this line: the axis' own digit is 0, the other two are the line's.
+    const int low = line % stride, high = line / stride;
+    const size_t base = static_cast<size_t>(high) * static_cast<size_t>(stride) * bins + static_cast<size_t>(low);
+    bool any = false;
+    for (int pos = 0; pos < bins && !any; ++pos) any = in[base + static_cast<size_t>(pos) * stride] != 0.0;
+    if (!any) continue;
+    for (int pos = 0; pos < bins; ++pos) {
+      double acc = 0;
+      for (int k = -radius; k <= radius; ++k) {
+        const int q = pos + k;
+        if (q < 0 || q >= bins) continue;
+        acc += kernel[static_cast<size_t>(k + radius)] * in[base + static_cast<size_t>(q) * stride];
+      }
+      out[base + static_cast<size_t>(pos) * stride] = acc;
     }
-    out[static_cast<size_t>(i)] = acc;
   }
   return out;
 }
