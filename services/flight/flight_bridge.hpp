@@ -28,7 +28,7 @@ class FlightBridge {
   explicit FlightBridge(const FlightParams& params);
 
   // Zero (hover) unless engaged, not landing, every input present, fresh (<= stale_timeout_s), valid and the
-  // track TRACKING. A changed command is taken at most once per command_spacing_s (the paper's 600 ms); a
+  // track TRACKING. A changed command is taken at most once per command_spacing_s (0.3 s; the paper's 600 ms); a
   // change to HOVER is taken at once (stopping is never delayed).
   Setpoint update(const BridgeInputs& in);
 

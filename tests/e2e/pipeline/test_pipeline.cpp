@@ -224,7 +224,7 @@ struct Judged { int checked = 0; std::map<int, int> per_gesture; Score decide; }
 
 // Judges every true gesture long enough to act on that the camera can see (a gesture whose arm is out of view is
 // reported, not judged) on every frame from 0.8 s after it starts to its end (the decide stage reacts within
-// 0.5 s, median, and the flight stage's 600 ms command spacing may hold a change a little longer).
+// 0.5 s, median, and the flight stage's 0.3 s command spacing may hold a change a little longer).
 Judged judge_gestures(const Recorded& r, double rest_drift_m) {
   constexpr int64_t kSettle = 800'000, kMinJudged = 800'000;
   Judged j;
@@ -371,9 +371,9 @@ TEST_P(ScenarioE2E, TrajectoryDoesWhatTheGesturesAsk) {
                d.frames ? 100.0 * d.old_frames / d.frames : 0.0, static_cast<long long>(d.wrong_frames - d.old_frames),
                d.false_at_rest, static_cast<long long>(d.false_at_rest_frames), d.confused,
                static_cast<long long>(d.confused_frames));
-  // What the drone flew: the recorded FLIGHT_SETPOINT's mode, frame by frame (the 600 ms command spacing holds
-  // back a command that comes within 0.6 s of the last one taken: a hand lowered slowly through the FURTHER zone
-  // after CLOSER gave a 6-frame FURTHER GESTURE_CMD in a nuisances run, never flown).
+  // What the drone flew: the recorded FLIGHT_SETPOINT's mode, frame by frame (the command spacing holds back a
+  // command that comes within 0.3 s of the last one taken: a hand lowered slowly through the FURTHER zone after
+  // CLOSER gave a 6-frame FURTHER GESTURE_CMD in a nuisances run, never flown).
   const std::string path = given ? std::string(given) : dir + "/log.lcmlog";
   const EvalLog recorded = read_eval_log(path);
   ASSERT_FALSE(recorded.recorded_flown.empty())

@@ -60,7 +60,8 @@ TEST(Config, DefaultsAreThePapersNumbers) {
   EXPECT_EQ(tracker.dsst.scale_samples, 19);
 
   const auto flight = c.section<FlightParams>("flight");
-  EXPECT_DOUBLE_EQ(flight.command_spacing_s, 0.6);
+  // Not the paper's 0.6 s: 0.3 is the best point on the measured curve (issue 14, decide README).
+  EXPECT_DOUBLE_EQ(flight.command_spacing_s, 0.3);
 }
 
 TEST(Config, EmptyFileGivesDefaults) {

@@ -309,7 +309,9 @@ TEST(FlightBridge, LandingSendsZero) {
 }
 
 TEST(FlightBridge, NewCommandsAreSpacedBy600Ms) {
-  FlightBridge b{FlightParams{}};
+  FlightParams paper;
+  paper.command_spacing_s = 0.6;  // the paper's (the default is 0.3: decide README)
+  FlightBridge b{paper};
   BridgeInputs in = ready(fine(-0.5, 0, 1));
   EXPECT_DOUBLE_EQ(b.update(in).velocity[1], -0.5);  // first command: taken at once
   // 100 ms later a different command: the previous one is held
