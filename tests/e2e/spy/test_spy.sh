@@ -9,13 +9,17 @@ out="$build/e2e/spy"; mkdir -p "$out"
 for t in Xvfb xdotool import java; do
   command -v "$t" >/dev/null || { echo "SKIPPED: $t not installed (deploy/setup installs it)"; exit 77; }
 done
-display=":$((90 + RANDOM % 100))"
-Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 & xvfb=$!
+# Xvfb picks a free display itself and writes its number once it accepts connections (-displayfd): a random
+# display and a second's sleep lost the race under load (one of the two lcm-spy windows could not connect).
+rm -f "$out/display.txt"
+Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$out/display.txt" >/dev/null 2>&1 & xvfb=$!
 health=""; spy=""
 cleanup() { kill $spy $health 2>/dev/null; kill $xvfb 2>/dev/null; wait 2>/dev/null; }
 trap cleanup EXIT
-export DISPLAY="$display"
-sleep 1
+for _ in $(seq 1 100); do [ -s "$out/display.txt" ] && break; sleep 0.1; done
+n="$(head -1 "$out/display.txt" 2>/dev/null | tr -d '[:space:]')"
+[ -n "$n" ] || { echo "FAIL: Xvfb gave no display within 10 s"; exit 1; }
+export DISPLAY=":$n"
 rm -f "$out/bus.key"; "$build/bin/gpilot-keygen" "$out/bus.key" >/dev/null || { echo "FAIL: gpilot-keygen"; exit 1; }
 GPILOT_BUS_KEY="$out/bus.key" "$build/bin/gpilot-health" --duration 30 >/dev/null & health=$!
 "$root/deploy/spy" >"$out/spy.log" 2>&1 & spy=$!
