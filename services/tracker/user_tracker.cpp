@@ -94,9 +94,16 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
     ++other_faces_;
     return FaceCheck::Other;
   }
-  if (scale > std::log1p(p_.face_recheck_tolerance) ||
-      std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width)
-    start(frame, body, out_.init, false);
+  // The face's size is taken only where it differs from the box's by more than the tolerance: the cascade finds a
+  // far user's 15 px face a pyramid step (10 %) larger or smaller from one re-check to the next, and a re-anchor
+  // for a shift alone that took it too made a 58 px box 66 px for seconds (open loop `far`). A shift alone moves
+  // the box and keeps its size; a resize keeps the box's shape (the track's ratios).
+  const bool resize = scale > std::log1p(p_.face_recheck_tolerance);
+  if (resize || std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width) {
+    const double k = resize ? face->face.width / fw : 1.0;
+    start(frame, cv::Rect2d(centre.x - k * b.width / 2, centre.y - k * b.height / 2, k * b.width, k * b.height), out_.init,
+          false);
+  }
   found_face(frame, face->face);
   return FaceCheck::Found;
 }
