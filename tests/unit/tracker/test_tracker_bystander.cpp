@@ -194,22 +194,12 @@ duration_s: 12
 // view. A body fitted to what shows then was 45 px wide against the user's 86, kept for the rest of the run,
 // and the hands stage misread the arms; a known user (their clothes matched) keeps their build instead.
 TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirBuild) {
-  const char* kHalfHidden = R"(
-background: data/backgrounds/building.jpg
-person: {north: 3.0, east: 0.0}
-bystanders:
-  - name: walker
-    shirt_bgr: [40, 60, 170]
-    keyframes:
-      - {t: 0, north: 1.6, east: -2.6}
-      - {t: 3, east: 0.0, transition_s: 2}
-      - {t: 6, east: 0.25, transition_s: 0.5}
-keyframes:
-  - {t: 0, gesture: REST}
-duration_s: 10
-)";
+  // The walker of kStandsInFront, who stops 0.25 m to the side instead of walking out.
+  std::string yaml = kStandsInFront;
+  const std::string walks_out = "{t: 6.5, east: 2.6, transition_s: 2}";
+  yaml.replace(yaml.find(walks_out), walks_out.size(), "{t: 6, east: 0.25, transition_s: 0.5}");
   const SyntheticParams sp;
-  const SyntheticWorld world(sp, Scenario::parse(kHalfHidden, "half-hidden.yaml"), 1);
+  const SyntheticWorld world(sp, Scenario::parse(yaml, "half-hidden.yaml"), 1);
   UserTracker tracker{TrackerParams{}};
   bool lost = false;
   int refound = -1;
