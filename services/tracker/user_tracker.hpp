@@ -66,6 +66,9 @@ class UserTracker {
   const BodyProportions& track_body() const { return track_body_; }
 
  private:
+  // A known user re-found on a face below this share of their last face's width: a part of their face, taken
+  // at the last face's size.
+  static constexpr double kMinRefoundFaceShare = 0.8;
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
   void found_face(const cv::Mat& frame, const cv::Rect2d& face);
   bool search(const cv::Mat& frame);
