@@ -177,14 +177,18 @@ bool UserTracker::search(const cv::Mat& frame) {
     // the re-found user's 36 px one in a CI bystander run: a 62 px box for their 90, and the hands stage read a
     // resting hand as CLOSER until the next re-check): taken at the last face's size, which that re-check, a
     // second later, corrects if the user did move away.
-    if (!known) track_body_ = fit.body;
-    cv::Rect2d user_face = face.face;
-    const double last_face = last_good_box_.width / track_body_.width_in_faces;
-    if (known && user_face.width < kMinRefoundFaceShare * last_face) {
-      const cv::Point2d c = (user_face.tl() + user_face.br()) * 0.5;
-      user_face = cv::Rect2d(c.x - last_face / 2, c.y - last_face / 2, last_face, last_face);
+    if (known) {
+      cv::Rect2d user_face = face.face;
+      const double last_face = last_good_box_.width / track_body_.width_in_faces;
+      if (user_face.width < kMinRefoundFaceShare * last_face) {
+        const cv::Point2d c = (user_face.tl() + user_face.br()) * 0.5;
+        user_face = cv::Rect2d(c.x - last_face / 2, c.y - last_face / 2, last_face, last_face);
+      }
+      start(frame, body_from_face(user_face, track_body_), InitSource::kFace);
+    } else {
+      track_body_ = fit.body;
+      start(frame, fit.box, InitSource::kFace);
     }
-    start(frame, known ? body_from_face(user_face, track_body_) : fit.box, InitSource::kFace);
     torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
     found_face(frame, face.face);
     faces_.restart_scan();  // the next search (after a loss) scans from the first tile
