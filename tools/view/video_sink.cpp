@@ -36,14 +36,15 @@ VideoSink::~VideoSink() {
 void VideoSink::open(const cv::Size& size) {
   // H.264 needs even sides; frames are padded by a row/column when odd.
   size_ = cv::Size(size.width + size.width % 2, size.height + size.height % 2);
-  for (const char* cc : {"avc1", "mp4v"}) {
-    writer_.open(mp4_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc(cc[0], cc[1], cc[2], cc[3]), fps_, size_);
-    if (writer_.isOpened()) {
-      fourcc_ = cc;
-      return;
-    }
+  const std::string h264_failed = h264_.open(mp4_, size_, fps_);
+  if (h264_failed.empty()) {
+    fourcc_ = "avc1";
+    return;
   }
-  throw std::runtime_error("cannot open " + mp4_ + " for writing with the FFMPEG backend (avc1 or mp4v)");
+  std::fprintf(stderr, "gpilot-view: %s: %s; trying OpenCV's writer (mp4v)\n", mp4_.c_str(), h264_failed.c_str());
+  writer_.open(mp4_, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_);
+  if (!writer_.isOpened()) throw std::runtime_error("cannot open " + mp4_ + " for writing (" + h264_failed + "; nor mp4v)");
+  fourcc_ = "mp4v";
 }
 
 void VideoSink::encode(const cv::Mat& annotated) {
@@ -52,7 +53,10 @@ void VideoSink::encode(const cv::Mat& annotated) {
   if (odd_fix != f.size())
     cv::copyMakeBorder(f, f, 0, odd_fix.height - f.rows, 0, odd_fix.width - f.cols, cv::BORDER_REPLICATE);
   if (f.size() != size_) cv::resize(f, f, size_, 0, 0, cv::INTER_AREA);
-  writer_.write(f);
+  if (h264_.is_open())
+    h264_.write(f);
+  else
+    writer_.write(f);
   ++written_;
 }
 
@@ -67,7 +71,7 @@ void VideoSink::write(const cv::Mat& annotated, int64_t seq, int64_t utime) {
   }
   ++seen_;
   if (mp4_.empty()) return;
-  if (writer_.isOpened()) {
+  if (h264_.is_open() || writer_.isOpened()) {
     encode(annotated);
     return;
   }
@@ -93,6 +97,7 @@ void VideoSink::close() {
   closed_ = true;
   if (!waiting_.empty()) start_writer();
   if (writer_.isOpened()) writer_.release();
+  h264_.close();
 }
 
 }  // namespace gpilot

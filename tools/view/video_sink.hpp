@@ -1,5 +1,6 @@
-// Where gpilot-view's annotated frames go when there is no window: an MP4 (OpenCV's FFMPEG backend;
-// GStreamer is unusable on this stack, see STACK.md §5) and/or every N-th frame as a PNG.
+// Where gpilot-view's annotated frames go when there is no window: an MP4 and/or every N-th frame as a PNG.
+// The MP4 is H.264 at x264's veryfast preset (h264_writer.hpp); without libx264, OpenCV's FFMPEG writer
+// (mp4v; GStreamer is unusable on this stack, see STACK.md §5).
 //
 // The MP4 is opened at the first frame with that frame's size; later frames of another size are scaled
 // to it. Without a given rate, the rate is the mean rate of frames 10..59's utimes (frames are
@@ -13,6 +14,8 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
+
+#include "h264_writer.hpp"
 
 namespace gpilot {
 
@@ -42,7 +45,8 @@ class VideoSink {
   double fps_;
   std::string png_dir_;
   int png_every_;
-  cv::VideoWriter writer_;
+  H264Writer h264_;
+  cv::VideoWriter writer_;  // the fallback
   cv::Size size_;
   std::string fourcc_;
   std::vector<std::pair<cv::Mat, int64_t>> waiting_;  // frames held until the rate is known
