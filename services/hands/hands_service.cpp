@@ -1,6 +1,6 @@
 // The hands stage on a bus, used by gpilot-hands (live LCM) and gpilot-replay (a log through memq://).
-// Reads CAMERA (gpilot.image_t, BGR8 or JPEG) and USER_TRACK (gpilot.user_track_t), pairs them by seq,
-// and writes HAND_OBS (gpilot.hand_obs_t) for each pair: the paper's Alg. 1 (stretched-out hand, vector
+// Reads CAMERA (gpilot.image_t, BGR8 or JPEG; decoded as it arrives, while the tracker works on the same
+// frame) and USER_TRACK (gpilot.user_track_t), pairs them by seq, and writes HAND_OBS (gpilot.hand_obs_t) for each pair: the paper's Alg. 1 (stretched-out hand, vector
 // from the shoulder centre) else Alg. 2 (hand in front of the body, vector from the body centre) else NONE.
 // A frame or track that never meets its partner is dropped and counted (HEALTH rejected); a track that
 // is not TRACKING gives NONE; a track made on a frame of another size is rejected.
@@ -26,6 +26,14 @@ namespace {
 
 // Frames' buffers kept for reuse: one waiting for its track, one being observed, one spare.
 constexpr size_t kSpareBuffers = 3;
+
+// A CAMERA frame as it waits for its track: decoded when it arrived (bgr wraps frame.data for a raw frame),
+// or why it could not be, reported when the pair is made (as a frame whose track never comes is).
+struct ArrivedFrame {
+  image_t frame;
+  cv::Mat bgr;
+  std::string undecodable;
+};
 
 void copy_rect(float* out, const cv::Rect& r) {
   out[0] = static_cast<float>(r.x);
@@ -76,12 +84,15 @@ bool observe(HandObserver& observer, const image_t& frame, const user_track_t& t
 
 }  // namespace
 
-std::string hands_on_pair(HandObserver& observer, const image_t& frame, const user_track_t& track,
-                          const ImageLimits& limits, hand_obs_t& obs) {
-  cv::Mat bgr;
+std::string decode_for_hands(const image_t& frame, const ImageLimits& limits, cv::Mat& bgr) {
   const std::string why = image_to_mat(frame, bgr, limits);
   if (!why.empty()) return "CAMERA seq " + std::to_string(frame.seq) + ": " + why;
   if (bgr.type() != CV_8UC3) return "CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, got GRAY8";
+  return "";
+}
+
+std::string hands_on_decoded(HandObserver& observer, const image_t& frame, const cv::Mat& bgr, const user_track_t& track,
+                             hand_obs_t& obs) {
   if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
     return "USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) + "x" +
            std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
@@ -93,15 +104,24 @@ std::string hands_on_pair(HandObserver& observer, const image_t& frame, const us
   return "";
 }
 
+std::string hands_on_pair(HandObserver& observer, const image_t& frame, const user_track_t& track,
+                          const ImageLimits& limits, hand_obs_t& obs) {
+  cv::Mat bgr;
+  const std::string why = decode_for_hands(frame, limits, bgr);
+  return why.empty() ? hands_on_decoded(observer, frame, bgr, track, obs) : why;
+}
+
 std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   struct State {
     State(const HandsParams& p, const std::string& model, const BodyProportions& body)
         : observer(p, SkinModel::load(model), body), pairer(p.match_window) {}
     HandObserver observer;
-    SeqPairer<image_t, user_track_t> pairer;
-    // Pixel buffers of frames already observed, lent back to the bus to decode the next frame into: a frame
-    // costs one copy (datagram -> buffer), no allocation, and is moved, not copied, while it waits for its track.
+    SeqPairer<ArrivedFrame, user_track_t> pairer;
+    // Buffers of frames already observed, lent back to the bus to receive the next frame into, and to decode it
+    // into: a frame costs one copy (datagram -> buffer) and its decode, no allocation, and is moved, not
+    // copied, while it waits for its track.
     std::vector<std::vector<uint8_t>> spare_buffers;
+    std::vector<cv::Mat> spare_pixels;
     int64_t frames_dropped = 0, tracks_dropped = 0;
     SeqGaps gaps;
   };
@@ -113,18 +133,21 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   auto& frames_dropped = state->frames_dropped;
   auto& tracks_dropped = state->tracks_dropped;
   auto& spare_buffers = state->spare_buffers;
+  auto& spare_pixels = state->spare_pixels;
 
   const auto limits = config.section<ImageLimits>("image");
-  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, &spare_buffers, model_path, limits](std::optional<std::pair<image_t, user_track_t>> pair) {
+  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, &spare_buffers, &spare_pixels, model_path](std::optional<std::pair<ArrivedFrame, user_track_t>> pair) {
     for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
       node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
     for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
       node.reject("USER_TRACK without a CAMERA frame of the same seq (dropped after hands.match_window seqs)");
     if (!pair) return;
-    const auto& [frame, track] = *pair;
+    auto& [arrived, track] = *pair;
     hand_obs_t obs;
-    const std::string why = hands_on_pair(observer, frame, track, limits, obs);
-    if (spare_buffers.size() < kSpareBuffers) spare_buffers.push_back(std::move(pair->first.data));
+    const std::string why =
+        arrived.undecodable.empty() ? hands_on_decoded(observer, arrived.frame, arrived.bgr, track, obs) : arrived.undecodable;
+    if (spare_buffers.size() < kSpareBuffers) spare_buffers.push_back(std::move(arrived.frame.data));
+    if (spare_pixels.size() < kSpareBuffers && arrived.bgr.u != nullptr) spare_pixels.push_back(std::move(arrived.bgr));
     if (!why.empty()) return node.reject(why);
     publish(node, hands_channels::kHandObs, obs);
     node.set_state(health_t::STATE_OK, "skin model " + model_path);
@@ -133,14 +156,20 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   // full; a skipped frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the
   // frames this stage published a HAND_OBS of.
   auto& gaps = state->gaps;
-  subscribe_taking(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer, &spare_buffers](image_t& m, int64_t) {
+  subscribe_taking(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer, &spare_buffers, &spare_pixels, limits](image_t& m, int64_t) {
     for (int64_t n = gaps.skipped_before(m.seq); n > 0; --n) node.drop();
-    image_t frame = std::move(m);  // the received bytes themselves
+    ArrivedFrame arrived{std::move(m), {}, {}};  // the received bytes themselves
     if (!spare_buffers.empty()) {
       m.data = std::move(spare_buffers.back());
       spare_buffers.pop_back();
     }
-    handle(pairer.add_frame(frame.seq, std::move(frame)));
+    if (!spare_pixels.empty()) {
+      arrived.bgr = std::move(spare_pixels.back());
+      spare_pixels.pop_back();
+    }
+    arrived.undecodable = decode_for_hands(arrived.frame, limits, arrived.bgr);
+    const int64_t seq = arrived.frame.seq;
+    handle(pairer.add_frame(seq, std::move(arrived)));
   }, config.section<TrackerParams>("tracker").camera_queue);
   subscribe(node, hands_channels::kUserTrack, [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
   node.set_state(health_t::STATE_DEGRADED, "waiting for CAMERA and USER_TRACK");
