@@ -79,8 +79,9 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const double fw = b.width / track_body_.width_in_faces;
   const cv::Rect roi = face_recheck_window(b, track_body_);
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
-  // A face below half the expected width is not this user's (the scale gate below): not searched enlarged.
-  const auto face = faces_.detect(frame, roi, fw / 2);
+  // A face below face_recheck_min_share of the expected width is not looked for (a face below half of it would
+  // not be this user's: the scale gate below).
+  const auto face = faces_.detect(frame, roi, p_.face_recheck_min_share * fw);
   if (!face) return missed_face(frame, in_view ? FaceCheck::Missed : FaceCheck::OutOfView);
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
   // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.
