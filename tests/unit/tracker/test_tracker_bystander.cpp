@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -189,6 +190,39 @@ duration_s: 12
   EXPECT_GT(without.on_other, 25);
 }
 
+// A user lost to the walker and found again: the box before the walker came (frame 50, the walker still 1.5 m
+// off to the side) and the first TRACKING output after the loss. edit: what the frames show once LOST.
+struct ReFound {
+  bool lost = false;
+  int frame = -1;
+  double width_before = 0;
+  TrackOutput out;
+  cv::Rect2d truth;
+  double width_in_faces = 0;  // the track's body ratio when re-found
+};
+
+ReFound refind(const std::string& yaml, const std::function<void(SyntheticFrame&)>& edit = {}) {
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::parse(yaml, "refind.yaml"), 1);
+  UserTracker tracker{TrackerParams{}};
+  ReFound r;
+  const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
+  for (int i = 0; i < frames && r.frame < 0; ++i) {
+    SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
+    if (r.lost && edit) edit(f);
+    const TrackOutput out = tracker.process(f.bgr);
+    if (i == 50) r.width_before = out.box.width;
+    r.lost = r.lost || (i > 50 && out.status != TrackStatus::kTracking);
+    if (r.lost && out.status == TrackStatus::kTracking) {
+      r.frame = i;
+      r.out = out;
+      r.truth = cv::Rect2d(f.truth.user_box);
+      r.width_in_faces = tracker.track_body().width_in_faces;
+    }
+  }
+  return r;
+}
+
 // The user re-found with a walker still half over their body (a CI bystander run): the walker crosses in front
 // (the track LOST on their face), then stops at 1.6 m covering the user's body on one side, the user's face in
 // view. A body fitted to what shows then was 45 px wide against the user's 86, kept for the rest of the run,
@@ -198,30 +232,14 @@ TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirBuild) {
   std::string yaml = kStandsInFront;
   const std::string walks_out = "{t: 6.5, east: 2.6, transition_s: 2}";
   yaml.replace(yaml.find(walks_out), walks_out.size(), "{t: 6, east: 0.25, transition_s: 0.5}");
-  const SyntheticParams sp;
-  const SyntheticWorld world(sp, Scenario::parse(yaml, "half-hidden.yaml"), 1);
-  UserTracker tracker{TrackerParams{}};
-  bool lost = false;
-  int refound = -1;
-  double width_before = 0, width_after = 0, iou_after = 0;
-  const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
-  for (int i = 0; i < frames && refound < 0; ++i) {
-    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
-    const TrackOutput out = tracker.process(f.bgr);
-    if (i == 50) width_before = out.box.width;  // the walker still 1.5 m off to the side
-    lost = lost || (i > 50 && out.status != TrackStatus::kTracking);
-    if (lost && out.status == TrackStatus::kTracking) {
-      refound = i;
-      width_after = out.box.width;
-      iou_after = iou(out.box, cv::Rect2d(f.truth.user_box));
-    }
-  }
-  std::printf("user re-found half hidden at %.1f s: box %.0f px wide (%.0f before the walker came; a body fitted "
+  const ReFound r = refind(yaml);
+  const double iou_after = iou(r.out.box, r.truth);
+  std::printf("user re-found half hidden at frame %d: box %.0f px wide (%.0f before the walker came; a body fitted "
               "to what shows was 74), IoU with the user %.3f\n",
-              refound / sp.fps, width_after, width_before, iou_after);
-  ASSERT_TRUE(lost);
-  ASSERT_GE(refound, static_cast<int>(6.5 * sp.fps));  // found again with the walker standing half over them
-  EXPECT_NEAR(width_after / width_before, 1.0, 0.05);
+              r.frame, r.out.box.width, r.width_before, iou_after);
+  ASSERT_TRUE(r.lost);
+  ASSERT_GE(r.frame, static_cast<int>(6.5 * SyntheticParams{}.fps));  // found again with the walker standing half over them
+  EXPECT_NEAR(r.out.box.width / r.width_before, 1.0, 0.05);
   EXPECT_GT(iou_after, 0.8);
 }
 
@@ -230,42 +248,24 @@ TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirBuild) {
 // their last one is taken at the last one's size. Here, once the walker has covered the user's face (LOST), the
 // user's face is shown at 0.6 of its size on their unchanged body: what the cascade then finds is the part.
 TEST(TrackerBystander, AUserReFoundOnAPartOfTheirFaceKeepsTheirSize) {
-  const SyntheticParams sp;
-  const SyntheticWorld world(sp, Scenario::parse(kStandsInFront, "part-of-face.yaml"), 1);
-  UserTracker tracker{TrackerParams{}};
-  bool lost = false;
-  int refound = -1;
-  double width_before = 0, width_after = 0, small_face = 0;
-  const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
-  for (int i = 0; i < frames && refound < 0; ++i) {
-    SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
-    if (lost) {
-      // The face box shrunk to 0.6 about its centre; the ring around it filled with the face box's edge colour.
-      const cv::Rect face = cv::Rect(f.truth.face_box) & cv::Rect(0, 0, f.bgr.cols, f.bgr.rows);
-      cv::Mat region = f.bgr(face);
-      cv::Mat part;
-      cv::resize(region, part, cv::Size(), 0.6, 0.6, cv::INTER_AREA);
-      const cv::Scalar edge = cv::mean(region.row(0));
-      region.setTo(edge);
-      part.copyTo(region(cv::Rect((face.width - part.cols) / 2, (face.height - part.rows) / 2, part.cols, part.rows)));
-    }
-    const TrackOutput out = tracker.process(f.bgr);
-    if (i == 50) width_before = out.box.width;  // the walker still 1.5 m off to the side
-    lost = lost || (i > 50 && out.status != TrackStatus::kTracking);
-    if (lost && out.status == TrackStatus::kTracking) {
-      refound = i;
-      width_after = out.box.width;
-      small_face = out.face ? out.face->width : 0.0;
-    }
-  }
-  std::printf("user re-found on a face 0.6 of theirs at %.1f s: face %.0f px, box %.0f px wide (%.0f before)\n",
-              refound / sp.fps, small_face, width_after, width_before);
-  ASSERT_TRUE(lost);
-  ASSERT_GT(refound, 0);
-  const double last_face = width_before / tracker.track_body().width_in_faces;
+  const ReFound r = refind(kStandsInFront, [](SyntheticFrame& f) {
+    // The face box shrunk to 0.6 about its centre; the ring around it filled with the face box's edge colour.
+    const cv::Rect face = cv::Rect(f.truth.face_box) & cv::Rect(0, 0, f.bgr.cols, f.bgr.rows);
+    cv::Mat region = f.bgr(face);
+    cv::Mat part;
+    cv::resize(region, part, cv::Size(), 0.6, 0.6, cv::INTER_AREA);
+    region.setTo(cv::mean(region.row(0)));
+    part.copyTo(region(cv::Rect((face.width - part.cols) / 2, (face.height - part.rows) / 2, part.cols, part.rows)));
+  });
+  const double small_face = r.out.face ? r.out.face->width : 0.0;
+  std::printf("user re-found on a face 0.6 of theirs at frame %d: face %.0f px, box %.0f px wide (%.0f before)\n",
+              r.frame, small_face, r.out.box.width, r.width_before);
+  ASSERT_TRUE(r.lost);
+  ASSERT_GT(r.frame, 0);
+  const double last_face = r.width_before / r.width_in_faces;
   ASSERT_GT(small_face, 0.0);
   ASSERT_LT(small_face, 0.8 * last_face) << "the part was not what was found (last face " << last_face << " px)";
-  EXPECT_NEAR(width_after / width_before, 1.0, 0.1);
+  EXPECT_NEAR(r.out.box.width / r.width_before, 1.0, 0.1);
 }
 
 // torso_colours: chromaticity, so a gain on the light leaves it; another shirt does not match.
