@@ -241,6 +241,31 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) 
   return {};
 }
 
+std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const cv::Rect& roi, double expected,
+                                                   double min_share) {
+  const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
+  const double u = expected > 0 ? p_.face.recheck_enlarged_face_px / expected : 0.0;
+  if (p_.face.recheck_small_face_px <= 0 || expected >= p_.face.recheck_small_face_px || r.empty() ||
+      static_cast<double>(r.area()) * u * u > p_.face.max_search_pixels)
+    return detect(frame, roi, min_share * expected);
+  if (frame.channels() == 3)
+    cv::cvtColor(frame(r), grey_, cv::COLOR_BGR2GRAY);
+  else
+    frame(r).copyTo(grey_);
+  cv::resize(grey_, small_, cv::Size(), u, u, cv::INTER_LINEAR);
+  const int min_px = std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)));
+  const int max_px = static_cast<int>(std::ceil(2 * expected * u));
+  std::vector<cv::Rect> faces;
+  cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+                            cv::Size(max_px, max_px));
+  std::vector<FaceDetection> all = sorted_of(faces, 1.0 / u, cv::Point(), frame);
+  if (all.empty()) return std::nullopt;
+  FaceDetection d = all.front();
+  d.face += cv::Point2d(r.tl());
+  d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+  return d;
+}
+
 std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
   if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};

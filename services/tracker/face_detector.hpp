@@ -42,6 +42,10 @@ class FaceDetector {
   // a caller that refuses the largest (a face on a poster) can take the next.
   std::vector<FaceDetection> detect_all(const cv::Mat& frame, double min_face = 0);
   std::vector<FaceDetection> detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face = 0);
+  // The face re-check's search of roi for a face of about expected px (taken from min_share of it to twice
+  // it): detect(frame, roi, min_share * expected), or, for an expected face below face.recheck_small_face_px,
+  // the window enlarged so that it is face.recheck_enlarged_face_px (within max_search_pixels).
+  std::optional<FaceDetection> recheck(const cv::Mat& frame, const cv::Rect& roi, double expected, double min_share);
 
   // One frame's share of a whole-frame search spread over frames, within face.scan_slice_pixels: the next
   // tiles of the scan (octaves of face sizes, large faces first; each octave's faces min_face_px .. 2.4x that

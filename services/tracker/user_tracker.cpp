@@ -81,7 +81,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   // A face below face_recheck_min_share of the expected width is not looked for (a face below half of it would
   // not be this user's: the scale gate below).
-  const auto face = faces_.detect(frame, roi, p_.face_recheck_min_share * fw);
+  const auto face = faces_.recheck(frame, roi, fw, p_.face_recheck_min_share);
   if (!face) return missed_face(frame, in_view ? FaceCheck::Missed : FaceCheck::OutOfView);
   // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
   // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.
