@@ -48,10 +48,7 @@ std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) { ret
 
 std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double min_face) {
   if (frame.empty()) return {};
-  if (frame.channels() == 3)
-    cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
-  else
-    frame.copyTo(grey_);
+  grey_of(frame);
   // The budget: at least face.downscale, and shrunk to at most max_search_pixels.
   const double k = std::max({1.0, p_.face.downscale,
                              std::sqrt(static_cast<double>(grey_.total()) / std::max(1.0, p_.face.max_search_pixels))});
@@ -71,12 +68,8 @@ std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double
   // The smallest face wanted, in the enlarged copy (the cascade's cost is mostly its smallest windows).
   const int from_px = std::max(min_px, static_cast<int>(std::floor(min_face * u)));
   if (u > 1.0 && k <= 1.0 && from_px <= max_px && static_cast<double>(grey_.total()) * u * u <= p_.face.max_search_pixels) {
-    cv::resize(grey_, small_, cv::Size(), u, u, cv::INTER_LINEAR);
-    faces.clear();
-    cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(from_px, from_px),
-                              cv::Size(max_px, max_px));
     const size_t first = out.size();
-    for (const FaceDetection& d : sorted_of(faces, 1.0 / u, cv::Point(), frame)) {
+    for (const FaceDetection& d : search_enlarged(u, from_px, max_px, frame)) {
       bool seen = false;  // a face of the sizes both searches cover, found by the first
       for (size_t i = 0; i < first; ++i)
         seen = seen || (d.face & out[i].face).area() > 0.5 * std::min(d.face.area(), out[i].face.area());
@@ -199,21 +192,13 @@ std::vector<FaceDetection> FaceDetector::window_step_all(const cv::Mat& frame, c
     window_for_ = r;
     window_.planned_for = cv::Size();
   }
-  std::vector<FaceDetection> all = step(frame(r), window_);
-  for (FaceDetection& d : all) {
-    d.face += cv::Point2d(r.tl());
-    d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
-  }
-  return all;
+  return in_frame(step(frame(r), window_), r, frame);
 }
 
 std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) {
   if (frame.size() != scan.planned_for) plan_scan(frame.size(), scan);
   if (scan.jobs.empty()) return {};
-  if (frame.channels() == 3)
-    cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
-  else
-    frame.copyTo(grey_);
+  grey_of(frame);
   double shrunk_for = 0;
   const int min_px = p_.face.min_face_px;
   std::vector<cv::Rect> faces;
@@ -244,32 +229,41 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) 
 std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const cv::Rect& roi, double expected,
                                                    double min_share) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
-  const double u = expected > 0 ? p_.face.recheck_enlarged_face_px / expected : 0.0;
-  if (p_.face.recheck_small_face_px <= 0 || expected >= p_.face.recheck_small_face_px || r.empty() ||
-      static_cast<double>(r.area()) * u * u > p_.face.max_search_pixels)
+  const bool small = p_.face.recheck_small_face_px > 0 && expected > 0 && expected < p_.face.recheck_small_face_px;
+  const double u = small ? p_.face.recheck_enlarged_face_px / expected : 1.0;
+  if (!small || r.empty() || static_cast<double>(r.area()) * u * u > p_.face.max_search_pixels)
     return detect(frame, roi, min_share * expected);
-  if (frame.channels() == 3)
-    cv::cvtColor(frame(r), grey_, cv::COLOR_BGR2GRAY);
-  else
-    frame(r).copyTo(grey_);
-  cv::resize(grey_, small_, cv::Size(), u, u, cv::INTER_LINEAR);
+  grey_of(frame(r));
   const int min_px = std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)));
-  const int max_px = static_cast<int>(std::ceil(2 * expected * u));
-  std::vector<cv::Rect> faces;
-  cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
-                            cv::Size(max_px, max_px));
-  std::vector<FaceDetection> all = sorted_of(faces, 1.0 / u, cv::Point(), frame);
+  const std::vector<FaceDetection> all =
+      in_frame(search_enlarged(u, min_px, static_cast<int>(std::ceil(2 * expected * u)), frame(r)), r, frame);
   if (all.empty()) return std::nullopt;
-  FaceDetection d = all.front();
-  d.face += cv::Point2d(r.tl());
-  d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
-  return d;
+  return all.front();
 }
 
 std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
   if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};
-  std::vector<FaceDetection> all = detect_all(frame(r), min_face);
+  return in_frame(detect_all(frame(r), min_face), r, frame);
+}
+
+void FaceDetector::grey_of(const cv::Mat& img) {
+  if (img.channels() == 3)
+    cv::cvtColor(img, grey_, cv::COLOR_BGR2GRAY);
+  else
+    img.copyTo(grey_);
+}
+
+std::vector<FaceDetection> FaceDetector::search_enlarged(double u, int min_px, int max_px, const cv::Mat& img) {
+  cv::resize(grey_, small_, cv::Size(), u, u, cv::INTER_LINEAR);
+  std::vector<cv::Rect> faces;
+  cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+                            cv::Size(max_px, max_px));
+  return sorted_of(faces, 1.0 / u, cv::Point(), img);
+}
+
+std::vector<FaceDetection> FaceDetector::in_frame(std::vector<FaceDetection> all, const cv::Rect& r,
+                                                  const cv::Mat& frame) const {
   for (FaceDetection& d : all) {
     d.face += cv::Point2d(r.tl());
     d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);

@@ -80,6 +80,11 @@ class FaceDetector {
   //! The next jobs of scan on img (the frame or a window of it) within the budget; boxes in img's pixels.
   std::vector<FaceDetection> step(const cv::Mat& img, Scan& scan);
   std::vector<FaceDetection> sorted_of(std::vector<cv::Rect> faces, double k, cv::Point offset, const cv::Mat& frame) const;
+  void grey_of(const cv::Mat& img);  //!< img (BGR or grey) into grey_
+  //! The faces of min_px .. max_px in grey_ enlarged u times (into small_), boxes in grey_'s pixels, largest first.
+  std::vector<FaceDetection> search_enlarged(double u, int min_px, int max_px, const cv::Mat& img);
+  //! Boxes found in frame(r) moved into frame's pixels, each body box made again there.
+  std::vector<FaceDetection> in_frame(std::vector<FaceDetection> all, const cv::Rect& r, const cv::Mat& frame) const;
 
   TrackerParams p_;
   cv::CascadeClassifier cascade_;

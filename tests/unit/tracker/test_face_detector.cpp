@@ -142,6 +142,28 @@ TEST(FaceDetector, EnlargedSearchLooksOnlyForTheFacesTheCallerTakes) {
   EXPECT_FALSE(d.detect(small, roi, 30.0).has_value());  // above the enlarged copy's largest face (25 px)
 }
 
+// The re-check's search: messi5's 16 px face (below recheck_small_face_px) is found in the window enlarged, at
+// its size; an expected size that means nothing (0, negative) or a window off the frame is no crash and no
+// enlarged search (the plain one, or none).
+TEST(FaceDetector, ReCheckFindsASmallFaceAndTakesNonsenseSizes) {
+  cv::Mat small;
+  cv::resize(photo("messi5.jpg"), small, cv::Size(), 0.4, 0.4, cv::INTER_AREA);
+  const cv::Rect roi(60, 10, 80, 80);
+  FaceDetector d{TrackerParams{}};
+  const auto any = d.detect(small, roi);
+  ASSERT_TRUE(any.has_value());
+  const auto face = d.recheck(small, roi, any->face.width, 0.7);
+  ASSERT_TRUE(face.has_value());
+  EXPECT_TRUE(face->face.contains({98, 45})) << face->face;
+  EXPECT_NEAR(face->face.width / any->face.width, 1.0, 0.15) << face->face << " vs " << any->face;
+  for (const double nonsense : {0.0, -5.0}) {
+    const auto f = d.recheck(small, roi, nonsense, 0.7);
+    ASSERT_TRUE(f.has_value()) << nonsense;  // the plain search, from its smallest face
+    EXPECT_EQ(f->face, any->face) << nonsense;
+  }
+  EXPECT_FALSE(d.recheck(small, cv::Rect(5000, 5000, 40, 40), 10.0, 0.7).has_value());
+}
+
 TEST(FaceDetector, FindsNoFaceOutsideTheSkier) {
   // GIVEN COCO 000000000785.jpg, one skier whose person box is [280.79, 44.73, 218.7, 346.68] (COCO val2017
   // annotations, CC BY 4.0). Her face is small and partly covered: the cascade may miss it, but anything it
