@@ -34,33 +34,37 @@ std::string temp_mp4(const char* name) { return (std::filesystem::temp_directory
 
 // One iteration writes the 50 frames to a file and closes it (the encoder's look-ahead is flushed there), and
 // the CPU is the process's (OpenCV's writer encodes on x264's threads): ms per frame = CPU / 50.
-void BM_VideoH264Writer(benchmark::State& state) {
+// write_file(path, frames): "" or why it could not.
+template <class WriteFile>
+void bench_writer(benchmark::State& state, const char* name, WriteFile write_file) {
   const auto& f = frames();
-  const std::string path = temp_mp4("gpilot_bench_h264.mp4");
-  for (auto _ : state) {
-    H264Writer w;
-    if (const std::string why = w.open(path, f[0].size(), 25.0); !why.empty()) return state.SkipWithError(why.c_str());
-    for (const cv::Mat& m : f) w.write(m);
-    w.close();
-  }
+  const std::string path = temp_mp4(name);
+  for (auto _ : state)
+    if (const std::string why = write_file(path, f); !why.empty()) return state.SkipWithError(why.c_str());
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(f.size()));
   state.counters["kB"] = static_cast<double>(std::filesystem::file_size(path)) / 1e3;
   std::filesystem::remove(path);
 }
+
+void BM_VideoH264Writer(benchmark::State& state) {
+  bench_writer(state, "gpilot_bench_h264.mp4", [](const std::string& path, const std::vector<cv::Mat>& f) {
+    H264Writer w;
+    if (std::string why = w.open(path, f[0].size(), 25.0); !why.empty()) return why;
+    for (const cv::Mat& m : f) w.write(m);
+    w.close();
+    return std::string();
+  });
+}
 BENCHMARK(BM_VideoH264Writer)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(5);
 
 void BM_VideoOpenCvWriter(benchmark::State& state) {
-  const auto& f = frames();
-  const std::string path = temp_mp4("gpilot_bench_opencv.mp4");
-  for (auto _ : state) {
+  bench_writer(state, "gpilot_bench_opencv.mp4", [](const std::string& path, const std::vector<cv::Mat>& f) {
     cv::VideoWriter w(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('a', 'v', 'c', '1'), 25.0, f[0].size());
-    if (!w.isOpened()) return state.SkipWithError("OpenCV's FFMPEG writer does not open avc1");
+    if (!w.isOpened()) return std::string("OpenCV's FFMPEG writer does not open avc1");
     for (const cv::Mat& m : f) w.write(m);
     w.release();
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(f.size()));
-  state.counters["kB"] = static_cast<double>(std::filesystem::file_size(path)) / 1e3;
-  std::filesystem::remove(path);
+    return std::string();
+  });
 }
 BENCHMARK(BM_VideoOpenCvWriter)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(5);
 
