@@ -47,6 +47,8 @@ class HandObserver {
   SkinAdaptation adaptation() const {
     return {adapter_.user_samples(), adapter_.scene_samples(), adapter_.changed_fraction()};
   }
+  // The skin classifier as learnt so far (the one the last observe() used).
+  const SkinClassifier& skin_classifier() { return adapter_.classifier(); }
   const cv::Mat& last_mask() const { return detector_.last_mask(); }
   cv::Rect last_roi() const { return detector_.last_roi(); }
   const HandsParams& params() const { return detector_.params(); }

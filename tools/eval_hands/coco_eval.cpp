@@ -97,7 +97,7 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
       } else {
         observer.reset();
         result = observer.observe(bgr, *view.view);
-        score = score_person(truth, *result);
+        score = score_person(truth, *result, bgr, &observer.skin_classifier(), &hands);
         board.add_run(truth, *result, *score);
         row.status = result->colourless ? "colourless" : "run";
         row.box = view.view->box;

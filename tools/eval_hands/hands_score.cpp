@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "hands/hand_square.hpp"
+
 namespace gpilot {
 
 double median(std::vector<double> v) {
@@ -31,7 +33,26 @@ double angle_between_deg(cv::Point2f a, cv::Point2f b) {
   return std::abs(std::remainder(d, 2 * M_PI)) * 180.0 / M_PI;
 }
 
-PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r) {
+cv::Rect truth_hand_square(const ArmKeypointTruth& arm, int side) {
+  const cv::Point2f c = arm.wrist + (arm.wrist - arm.elbow) * (1.0f / 3.0f);
+  return {static_cast<int>(std::lround(c.x)) - side / 2, static_cast<int>(std::lround(c.y)) - side / 2, side, side};
+}
+
+namespace {
+
+// Skin pixels (the classifier's, no opening) in the truth hand's square, clipped to the image.
+int skin_in_square(const cv::Mat& bgr, const SkinClassifier& skin, const cv::Rect& square) {
+  const cv::Rect r = square & cv::Rect(0, 0, bgr.cols, bgr.rows);
+  if (r.empty()) return 0;
+  cv::Mat mask;
+  skin.classify(bgr(r), mask);
+  return cv::countNonZero(mask);
+}
+
+}  // namespace
+
+PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r, const cv::Mat& bgr, const SkinClassifier* skin,
+                         const HandsParams* params) {
   PersonScore s;
   if (!t.usable || t.person == PersonTruth::Ambiguous) return s;
   s.scored = true;
@@ -71,6 +92,20 @@ PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r) {
   } else {
     s.false_hand = r.kind != HandKind::None;
   }
+  if (skin && params && !bgr.empty() && s.expected != HandKind::None && r.geometry.width > 0) {
+    // The stage's own measures for this box: its hand square and the skin count Alg. 1 / 2 ask for there.
+    const int side = hand_square_side(*params, r.geometry.width, bgr.size());
+    const double share_square = params->min_skin_square_share * side * side;
+    const int paper = s.expected == HandKind::Out ? params->out_min_skin : params->front_min_skin;
+    const int need = params->min_skin_square_share > 0 && share_square < paper ? static_cast<int>(share_square) : paper;
+    for (const ArmKeypointTruth* arm : {&t.left, &t.right}) {
+      const bool of_kind = s.expected == HandKind::Out ? arm->label == ArmTruth::Out : is_front(arm->label);
+      if (!of_kind) continue;
+      const int n = r.colourless ? 0 : skin_in_square(bgr, *skin, truth_hand_square(*arm, side));
+      s.hand_skin = std::max(s.hand_skin.value_or(0), n);
+    }
+    s.hand_shows_skin = s.hand_skin.value_or(0) > need;
+  }
   return s;
 }
 
@@ -93,6 +128,8 @@ void HandsScoreboard::add_run(const PersonKeypointTruth& t, const HandResult& r,
   front_found_ += s.front_found;
   front_hl_right_ += s.front_high_low_right.value_or(false);
   false_hand_ += s.false_hand;
+  if (s.hand_shows_skin && s.expected == HandKind::Out) ++out_skin_, out_skin_found_ += s.out_found;
+  if (s.hand_shows_skin && s.expected == HandKind::Front) ++front_skin_, front_skin_found_ += s.front_found;
 }
 
 double HandsScoreboard::kind_accuracy() const { return ratio(kind_right_, scored_); }
@@ -150,6 +187,11 @@ nlohmann::json HandsScoreboard::to_json(const nlohmann::json& context) const {
                 {"vectors", "stage: hand - p_bc (stage's body centre); truth HIGH/LOW: wrist above/below the torso centre"},
                 {"high_low_right", front_hl_right_},
                 {"high_low_right_given_found", ratio(front_hl_right_, front_found_)}};
+  j["hand_shows_skin"] = {{"what", "OUT/FRONT persons whose truth hand square holds more skin (the stage's classifier) than the stage needs"},
+                          {"out", out_skin_},
+                          {"out_found", out_skin_found_},
+                          {"front", front_skin_},
+                          {"front_found", front_skin_found_}};
   j["rest"] = {{"persons", rest_n}, {"false_hand", false_hand_}, {"false_hand_rate", ratio(false_hand_, rest_n)}};
   return j;
 }
@@ -206,6 +248,11 @@ void HandsScoreboard::print_table(std::FILE* out, const std::string& title) cons
                static_cast<long long>(front_hl_right_), static_cast<long long>(front_found_), 100 * ratio(front_hl_right_, front_found_));
   std::fprintf(out, "false hand on REST persons  %lld of %lld (%.1f %%)\n", static_cast<long long>(false_hand_), static_cast<long long>(rest_n),
                100 * ratio(false_hand_, rest_n));
+  std::fprintf(out, "truth hand shows skin       OUT %lld of %lld (found %lld of them), FRONT %lld of %lld (found %lld of them)\n"
+                    "                            (the stage's skin, before the opening, in its hand square a third of the forearm\n"
+                    "                            beyond the truth wrist, more than the stage needs: what skin colour can find)\n",
+               static_cast<long long>(out_skin_), static_cast<long long>(out_n), static_cast<long long>(out_skin_found_),
+               static_cast<long long>(front_skin_), static_cast<long long>(front_n), static_cast<long long>(front_skin_found_));
 }
 
 }  // namespace gpilot

@@ -7,6 +7,10 @@
 //                the one whose wrist is nearer the stage's hand pixel.
 //   false hand:  stage kind != NONE on a person whose both arms are REST.
 //   kind accuracy over scored people (truth OUT/FRONT/REST <-> stage OUT/FRONT/NONE).
+//   hand shows skin: on an OUT or FRONT person, a hand of that kind whose square (the stage's hand square, centred
+//                a third of the forearm beyond the truth wrist) holds more skin than the stage needs (the
+//                stage's own classifier, adapted to this person, before the opening): the most a skin-colour
+//                stage can find (a glove, a held object, a colour cast or a greyscale photo shows none).
 #pragma once
 
 #include <array>
@@ -34,9 +38,15 @@ struct PersonScore {
   bool false_hand = false;
   std::string truth_arm;                     //!< "left"/"right": the arm the truth vector goes to ("" none)
   std::optional<cv::Point2f> truth_vector;   //!< OUT: truth wrist - stage p_uc; FRONT: truth wrist - stage p_bc
+  std::optional<int> hand_skin;              //!< OUT/FRONT: skin pixels in the truth hand's square (the most over its arms)
+  bool hand_shows_skin = false;              //!< hand_skin above what the stage needs for that square
 };
 
-PersonScore score_person(const PersonKeypointTruth& truth, const HandResult& result);
+// skin: the stage's classifier as it ran on this person (nullptr: hand_skin not measured).
+PersonScore score_person(const PersonKeypointTruth& truth, const HandResult& result, const cv::Mat& bgr = {},
+                         const SkinClassifier* skin = nullptr, const HandsParams* params = nullptr);
+// The truth hand's square: the stage's hand square side, centred a third of the forearm beyond the wrist.
+cv::Rect truth_hand_square(const ArmKeypointTruth& arm, int side);
 
 // Angle between two vectors, degrees 0..180 (0 for a zero vector).
 double angle_between_deg(cv::Point2f a, cv::Point2f b);
@@ -70,6 +80,7 @@ class HandsScoreboard {
   std::array<int64_t, kPersonTruths> persons_{}, no_face_{}, run_by_truth_{}, colourless_{};
   std::array<int64_t, kArmTruths> arms_{};
   int64_t confusion_[3][3] = {};  //!< [expected][stage], order NONE, OUT, FRONT
+  int64_t out_skin_ = 0, out_skin_found_ = 0, front_skin_ = 0, front_skin_found_ = 0;
   int64_t out_found_ = 0, front_found_ = 0, front_hl_right_ = 0, false_hand_ = 0, kind_right_ = 0;
   std::vector<double> out_angle_err_;
 };

@@ -140,6 +140,13 @@ void expect_consistent(const json& j) {
   for (const auto& row : j["confusion"]["counts"])
     for (const auto& n : row) confusion += n.get<int>();
   EXPECT_EQ(confusion, j.value("persons_scored", -1));
+  // Hands that show skin are a part of their kind's persons, and the found ones a part of those.
+  const json& shown = j["hand_shows_skin"];
+  EXPECT_LE(shown.value("out_found", 99), shown.value("out", -1));
+  EXPECT_LE(shown.value("out", 99), j["out"].value("persons", -1));
+  EXPECT_LE(shown.value("out_found", 99), j["out"].value("found", -1));
+  EXPECT_LE(shown.value("front_found", 99), shown.value("front", -1));
+  EXPECT_LE(shown.value("front", 99), j["front"].value("persons", -1));
   if (j.value("box", "") != "annotation") {
     EXPECT_EQ(j.value("faces_found", -1), run);
   } else {
