@@ -75,12 +75,13 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
     }
     gpilot::TrackOutput out;
     try {
-      out = tracker.process(frame);
+      out = tracker.track(frame);
     } catch (const std::invalid_argument& e) {
       node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + e.what());
       return;
     }
     publish(node, tracker_channels::kUserTrack, to_message(out, msg));
+    tracker.finish(frame);  // the face re-check, after the frame's track is out
     std::string detail = out.status == gpilot::TrackStatus::kTracking ? "tracking"
                          : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
                                                                       : "searching for a face";

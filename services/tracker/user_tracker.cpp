@@ -27,6 +27,8 @@ void UserTracker::reset() {
   out_.confidence = 0.0;
   out_.init = InitSource::kNone;
   out_.face.reset();
+  recheck_psr_.reset();
+  recheck_face_.reset();
   bad_frames_ = 0;
   searches_ = 0;
   torso_colours_.clear();  // whoever comes is the user (RESET: a new user)
@@ -229,22 +231,34 @@ void UserTracker::track_frame(const cv::Mat& frame) {
   const bool weak = e.psr < p_.weak_recheck_psr && !torso_colours_.empty() && p_.recheck_min_torso_match > 0;
   ++frames_since_face_;
   if (p_.face_recheck_frames > 0 &&
-      (frames_since_face_ >= p_.face_recheck_frames || (weak && frames_since_face_ >= p_.weak_recheck_frames))) {
-    // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
-    // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
-    const FaceCheck check = recheck_face(frame);
-    if (check == FaceCheck::Other || check == FaceCheck::OffUser) {
-      // Where the box puts the face there is someone else's (other clothes), or no face and not the user's
-      // clothes: the box is on someone else or the background, or someone stands in front of the user. Not
-      // flown on; the search (which refuses other clothes while LOST) finds the user.
-      lose(false);
-      return;
-    }
-    if (check == FaceCheck::Found || (check == FaceCheck::Missed && e.psr >= p_.face_miss_psr)) face_misses_ = 0;
-    if (check == FaceCheck::Missed && e.psr < p_.face_miss_psr) ++face_misses_;
-    if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses)
-      lose(false);  // searched again from the next frame
+      (frames_since_face_ >= p_.face_recheck_frames || (weak && frames_since_face_ >= p_.weak_recheck_frames)))
+    recheck_psr_ = e.psr;  // finish() re-checks this frame's face, after its output is out
+}
+
+void UserTracker::finish(const cv::Mat& frame) {
+  if (!recheck_psr_) return;
+  const double psr = *recheck_psr_;
+  recheck_psr_.reset();
+  if (out_.status != TrackStatus::kTracking || frame.size() != frame_size_) return;
+  // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
+  // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
+  const FaceCheck check = recheck_face(frame);
+  if (out_.face) {
+    // Published with the next frame, moved as the track moves from this one (the box as re-anchored) to it.
+    recheck_face_ = RecheckFace{*out_.face, out_.box, out_.track_id};
+    out_.face.reset();
   }
+  if (check == FaceCheck::Other || check == FaceCheck::OffUser) {
+    // Where the box puts the face there is someone else's (other clothes), or no face and not the user's
+    // clothes: the box is on someone else or the background, or someone stands in front of the user. Not
+    // flown on; the search (which refuses other clothes while LOST) finds the user.
+    lose(false);
+    return;
+  }
+  if (check == FaceCheck::Found || (check == FaceCheck::Missed && psr >= p_.face_miss_psr)) face_misses_ = 0;
+  if (check == FaceCheck::Missed && psr < p_.face_miss_psr) ++face_misses_;
+  if (out_.init == InitSource::kFace && p_.face_recheck_misses > 0 && face_misses_ >= p_.face_recheck_misses)
+    lose(false);  // searched again from the next frame
 }
 
 void UserTracker::lost_frame(const cv::Mat& frame) {
@@ -280,10 +294,19 @@ void UserTracker::lost_frame(const cv::Mat& frame) {
 }
 
 TrackOutput UserTracker::process(const cv::Mat& frame) {
+  TrackOutput out = track(frame);
+  finish(frame);
+  return out;
+}
+
+const TrackOutput& UserTracker::track(const cv::Mat& frame) {
   if (frame.empty() || frame.depth() != CV_8U || (frame.channels() != 1 && frame.channels() != 3))
     throw std::invalid_argument("UserTracker: frame must be a non-empty CV_8UC1 or CV_8UC3 image");
+  if (recheck_psr_) throw std::logic_error("UserTracker::track: finish() was not called on the last frame");
   out_.face.reset();  // set again below only if the cascade finds the face in this frame
   out_.refused = FaceRefusal::kNone;
+  std::optional<RecheckFace> rechecked;
+  rechecked.swap(recheck_face_);
   if (frame.size() != frame_size_) {
     if (out_.status != TrackStatus::kSearching) reset();  // a LOST track's filter and box are of the old size too
     frame_size_ = frame.size();
@@ -302,7 +325,17 @@ TrackOutput UserTracker::process(const cv::Mat& frame) {
   }
 
   switch (out_.status) {
-    case TrackStatus::kTracking: track_frame(frame); break;
+    case TrackStatus::kTracking:
+      track_frame(frame);
+      // The last frame's re-check found the face: it goes out now, where the track moved it.
+      if (rechecked && out_.status == TrackStatus::kTracking && out_.track_id == rechecked->track_id && !out_.face) {
+        const cv::Rect2d& from = rechecked->box;
+        const double k = from.width > 0 ? out_.box.width / from.width : 1.0;
+        const cv::Rect2d& f = rechecked->face;
+        const cv::Point2d c = (out_.box.tl() + out_.box.br()) * 0.5 + ((f.tl() + f.br()) * 0.5 - (from.tl() + from.br()) * 0.5) * k;
+        found_face(frame, cv::Rect2d(c.x - k * f.width / 2, c.y - k * f.height / 2, k * f.width, k * f.height));
+      }
+      break;
     case TrackStatus::kLost: lost_frame(frame); break;
     case TrackStatus::kSearching:
       search(frame);

@@ -31,9 +31,9 @@ struct TrackOutput {
   double confidence = 0.0;  //!< PSR of this frame's translation response (0 while searching)
   InitSource init = InitSource::kNone;
   int track_id = 0;         //!< +1 per started track; 0 before the first
-  //! The face the cascade found in THIS frame (pixels, inside the frame): on the frame a track starts from a
-  //! face and on each re-check frame where the face is found (re-anchored or not), manual tracks included;
-  //! empty on every other frame.
+  //! The face the cascade found (pixels, inside the frame): in THIS frame on the frame a track starts from a
+  //! face; in the frame before, moved as the track moved, on the frame after each re-check that found it
+  //! (re-anchored or not, manual tracks included); empty on every other frame.
   std::optional<cv::Rect2d> face;
   //! A face the search found in THIS frame and did not start a track on (its body box failed the image
   //! check, body_fit.hpp); kNone on every other frame.
@@ -52,7 +52,16 @@ class UserTracker {
 
   // One frame (CV_8UC3 or CV_8UC1). Throws std::invalid_argument for an unusable frame, without
   // changing the track. A frame of another size than the track's ends the track (search again).
+  // track() gives the frame's output; finish() (the same frame, before the next track()) then does the work
+  // whose result only the next frames need: the face re-check, about once a second, and its re-anchor (the
+  // cascade on the face window and a new filter: 10-20 ms, which before lay between the frame and its
+  // USER_TRACK). Its outcome shows from the next frame on: the face found goes out with it, moved as the track
+  // moved; a track dropped off the user is LOST there. process() is both, with track()'s output: what the
+  // service publishes, so replay and the tools see the same. track() without finish() before it throws
+  // std::logic_error.
   TrackOutput process(const cv::Mat& frame);
+  const TrackOutput& track(const cv::Mat& frame);
+  void finish(const cv::Mat& frame);
 
   const TrackOutput& last() const { return out_; }
   int bad_frames() const { return bad_frames_; }
@@ -104,6 +113,12 @@ class UserTracker {
   int64_t other_faces_ = 0;
   int64_t off_user_ = 0;
   std::vector<float> torso_colours_;  //!< the user's torso chromaticity (tracks from a face; empty: no gate)
+  std::optional<double> recheck_psr_;  //!< track() found a re-check due (this frame's PSR): finish() does it
+  struct RecheckFace {
+    cv::Rect2d face, box;  //!< the face found and the box (as re-anchored) on the re-check's frame
+    int track_id = 0;
+  };
+  std::optional<RecheckFace> recheck_face_;  //!< published with the next frame
 };
 
 }  // namespace gpilot

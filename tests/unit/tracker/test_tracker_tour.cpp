@@ -156,10 +156,10 @@ TEST(TrackerTour, FaceMissesWithWeakEvidenceMakeTheTrackLost) {
   EXPECT_LE(lost_after, 4 * 25) << "still TRACKING with the face hidden";
 }
 
-// USER_TRACK's face box (TrackOutput::face): the face the cascade found in this very frame, for the hands
-// stage to learn the user's skin from. The idle user, the camera still: a track from the face search carries
-// it on its start frame and on each re-check frame (every face_recheck_frames), near the true face; on every
-// other frame it is empty.
+// USER_TRACK's face box (TrackOutput::face), for the hands stage to learn the user's skin from. The idle user,
+// the camera still: a track from the face search carries it on its start frame (the face found there) and on
+// the frame after each re-check (every face_recheck_frames; the re-check runs after its frame's output is
+// out), near the true face of that frame; on every other frame it is empty.
 TEST(TrackerTour, FaceBoxOnTheStartFrameAndOnEachRecheckFrameOnly) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
@@ -168,11 +168,11 @@ TEST(TrackerTour, FaceBoxOnTheStartFrameAndOnEachRecheckFrameOnly) {
   UserTracker tracker(tp);
   int found_at = -1, faces = 0;
   // Up to the third re-check after the start (the scan finds the user within its first tiles, large faces first).
-  for (int i = 0; found_at < 0 ? i <= scan_frames(tp, sp) : i <= found_at + 3 * tp.face_recheck_frames; ++i) {
+  for (int i = 0; found_at < 0 ? i <= scan_frames(tp, sp) : i <= found_at + 3 * tp.face_recheck_frames + 1; ++i) {
     const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
     const TrackOutput out = tracker.process(f.bgr);
     if (found_at < 0 && out.status == TrackStatus::kTracking) found_at = i;
-    const bool looked = found_at >= 0 && (i - found_at) % tp.face_recheck_frames == 0;
+    const bool looked = found_at >= 0 && (i == found_at || (i - found_at > 1 && (i - found_at - 1) % tp.face_recheck_frames == 0));
     if (!looked) {
       EXPECT_FALSE(out.face.has_value()) << "frame " << i << ": " << *out.face;
       continue;
@@ -190,8 +190,8 @@ TEST(TrackerTour, FaceBoxOnTheStartFrameAndOnEachRecheckFrameOnly) {
 }
 
 // A manual track (TRACKER_INIT) whose box is 20 % too large and off to the side: nothing is looked for on its
-// start frame, and the first re-check finds the face, re-anchors the box on it (the body box of that face)
-// and publishes the face on that frame.
+// start frame, and the first re-check finds the face and re-anchors the box on it (the body box of that face):
+// both show on the frame after the re-check's (its own frame's output was out before it ran).
 TEST(TrackerTour, ManualTrackPublishesTheFaceItsRecheckFindsAndReanchorsOn) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
@@ -208,9 +208,9 @@ TEST(TrackerTour, ManualTrackPublishesTheFaceItsRecheckFindsAndReanchorsOn) {
     ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i;
     EXPECT_EQ(out.init, InitSource::kManual);
     EXPECT_EQ(out.track_id, 1);
-    if (i != tp.face_recheck_frames) {
+    if (i != tp.face_recheck_frames + 1) {
       EXPECT_FALSE(out.face.has_value()) << "frame " << i;
-      if (i == tp.face_recheck_frames - 1) {  // still the manual box's scale just before the re-check
+      if (i == tp.face_recheck_frames) {  // still the manual box's scale on the re-check's own frame
         EXPECT_GT(out.box.height / f.truth.user_box.height, 1.12) << out.box;
       }
       continue;
