@@ -1,6 +1,7 @@
 // The paper's Alg. 1, 2 and 3 applied to true hand positions (see gesture_truth.hpp for the simplifications).
 #include "gesture_truth.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -25,7 +26,7 @@ cv::Rect2f user_box_from_face(const cv::Rect2f& face, const TrackerParams& t) {
 }
 
 ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Point2f, 2>& hands,
-                                 const cv::Size& image, const TruthRules& rules) {
+                                 const cv::Size& image, const TruthRules& rules, float hand_size) {
   const HandsParams& hp = rules.hands;
   ExpectedCommand e;
   const float cx = box.x + 0.5f * box.width;
@@ -35,11 +36,13 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   e.mode = gesture_cmd_t::MODE_HOVER;
   const float x1 = box.x + box.width, y1 = box.y + box.height;
   // As the stage (hands.needs_body_centre): with the body centre out of view (the drone high and close, the hips
-  // below the frame) no hand in front is judged, nor a hand below the shoulders whose square the border cuts.
+  // below the frame) no hand in front is judged, nor a hand below the shoulders whose square the border cuts
+  // wherever it sits on the hand (the stage's hand pixel is the hand's outer edge, not its centre: a DOWN hand
+  // whose centre's square the border cut was seen and flown, and judged a false DOWN).
   const int side = hand_square_side(hp, box.width, image);
   const bool cut_body = hp.needs_body_centre && !square_in_view(e.body_centre, side, image);
   const auto border_cut = [&](const cv::Point2f& p) {
-    return cut_body && p.y > e.shoulder_centre.y && square_cut_by_side_or_bottom(p, side, image);
+    return cut_body && p.y > e.shoulder_centre.y && square_cut_by_side_or_bottom(p, side, image, 0.5f * std::max(0.0f, hand_size));
   };
 
   // Alg. 1: a hand outside the box (but inside the search rectangle and the image).

@@ -9,7 +9,8 @@
 // - Alg. 2 does not see a hand whose centre lies in the removed face/neck or legs band (hands.*_remove_ratio);
 // - the forearm's skin is ignored (the real Alg. 1 may pick a point on a raised forearm, not the hand);
 // - as the stage (hands.needs_body_centre), while the body centre's hand square is out of the image no hand in
-//   front is seen, nor a hand below the shoulders whose square the border cuts: such a gesture is not in view.
+//   front is seen, nor a hand below the shoulders whose square the border cuts wherever on the hand (a square
+//   of hand_size about its centre) it sits: such a gesture is not in view.
 // The command is what Alg. 3 gives once the buffers are full of this frame's observation: OUT -> FINE, or
 // UP/DOWN when |y| > |λ4 x| (x then 0); FRONT -> CLOSER (y < 0, z = +1) or FURTHER (y > 0, z = -1); else HOVER.
 #pragma once
@@ -43,8 +44,9 @@ struct ExpectedCommand {
   cv::Point3f direction;        //!< x, y = vector / box width (x = 0 for UP/DOWN); z = +1 CLOSER, -1 FURTHER
 };
 
-// hands: the true centres of both hands, pixels; image: the frame size.
+// hands: the true centres of both hands, pixels; image: the frame size; hand_size: the side of a square about
+// each centre that holds the whole hand, pixels (0: a hand is its centre).
 ExpectedCommand expected_command(const cv::Rect2f& user_box, const std::array<cv::Point2f, 2>& hands,
-                                 const cv::Size& image, const TruthRules& rules);
+                                 const cv::Size& image, const TruthRules& rules, float hand_size = 0.0f);
 
 }  // namespace gpilot

@@ -666,7 +666,7 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   t.right_elbow = pt(pose.right.elbow), t.left_elbow = pt(pose.left.elbow);
   t.right_wrist = pt(pose.right.wrist), t.left_wrist = pt(pose.left.wrist);
   t.hand_size = static_cast<float>(1.1 * std::max(v.px(dims_.hand_length, pose.right.hand), v.px(dims_.hand_length, pose.left.hand)));
-  const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), rules_);
+  const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), rules_, t.hand_size);
   t.shoulder_centre = e.shoulder_centre;
   t.body_centre = e.body_centre;
   t.expected_kind = e.kind;

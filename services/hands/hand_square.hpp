@@ -27,9 +27,11 @@ inline bool square_in_view(cv::Point2f p, int side, cv::Size image) {
 
 // The square of side `side` at p, as F_skin counts it ([p - side/2, p - side/2 + side)), crosses the image's left,
 // right or bottom border: below the shoulders, while the body centre is out of view, no hand is judged there.
-inline bool square_cut_by_side_or_bottom(cv::Point2f p, int side, cv::Size image) {
+// give: the square may move this far towards the image's inside first (the ground truth's hand is a square of
+// its own about p: a part of it whose square the border does not cut is a hand the stage can judge).
+inline bool square_cut_by_side_or_bottom(cv::Point2f p, int side, cv::Size image, float give = 0.0f) {
   const int half = side / 2;
-  return p.x - half < 0 || p.x - half + side > image.width || p.y - half + side > image.height;
+  return p.x + give - half < 0 || p.x - give - half + side > image.width || p.y - give - half + side > image.height;
 }
 
 }  // namespace gpilot

@@ -95,6 +95,13 @@ TEST(GestureTruth, WithTheBodyCentreOutOfViewAHandInFrontOrCutByTheBorderIsNotSe
   EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules).kind, hand_obs_t::KIND_NONE);
   // AND a raised hand above the shoulders still is
   EXPECT_EQ(expected_command(low, {cv::Point2f(40, 400), rest}, kImage, rules).kind, hand_obs_t::KIND_OUT);
+  // AND a hand is more than its centre: its square (25 px) is cut 8 px at the bottom at the centre (475 - 12 + 25
+  // = 488); a 10 px hand's top still has it cut (483), a 20 px hand's (478) does not: that hand is seen
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules, 10.0f).kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules, 20.0f).kind, hand_obs_t::KIND_OUT);
+  // AND so at the side: a hand at x = 8 has its square cut on the left (8 - 12 < 0) unless it reaches 4 px in
+  EXPECT_EQ(expected_command(low, {cv::Point2f(8, 440), rest}, kImage, rules, 6.0f).kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(expected_command(low, {cv::Point2f(8, 440), rest}, kImage, rules, 8.0f).kind, hand_obs_t::KIND_OUT);
   // WHEN the rule is off (hands.needs_body_centre false) THEN the paper's rules see both
   rules.hands.needs_body_centre = false;
   EXPECT_EQ(expected_command(low, {in_front, rest}, kImage, rules).mode, gesture_cmd_t::MODE_CLOSER);
