@@ -18,7 +18,7 @@ const char* hand_kind_name(HandKind k) {
   }
 }
 
-HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size image) {
+HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size image, const std::optional<cv::Rect2f>& face) {
   HandGeometry g;
   if (!std::isfinite(b.x) || !std::isfinite(b.y) || !std::isfinite(b.width) || !std::isfinite(b.height) || b.width <= 0 ||
       b.height <= 0)
@@ -42,6 +42,11 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   g.hand_side = hand_square_side(p, w, image);
   const auto row = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
   g.face_rows_end = row(y + p.face_remove_ratio * h);
+  // The box's ratio puts the chin's row where the box's top puts it: a box 8 px (0.15 face) higher than the
+  // preset's, as a re-anchor with the track's fitted ratios made it, left the whole neck in the front band, and a
+  // resting user's neck was a hand in front (CLOSER for 1 s). A known face says where the neck ends.
+  if (face && p.neck_in_faces > 0 && std::isfinite(face->y) && std::isfinite(face->height) && face->height > 0)
+    g.face_rows_end = std::max(g.face_rows_end, row(face->y + face->height * (1.0 + p.neck_in_faces)));
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.image = image;
   g.body_centre_in_view = square_in_view(g.body_centre, g.hand_side, image);
@@ -53,9 +58,10 @@ HandDetector::HandDetector(const HandsParams& params, SkinClassifier skin) : par
   if (skin_.empty()) throw SkinModelError("hand detector needs a skin classifier");
 }
 
-HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin) {
+HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin,
+                                 const std::optional<cv::Rect2f>& face) {
   CV_Assert(bgr.type() == CV_8UC3);
-  const HandGeometry g = hand_geometry(params_, user_box, bgr.size());
+  const HandGeometry g = hand_geometry(params_, user_box, bgr.size(), face);
   last_roi_ = g.valid ? g.roi : cv::Rect();
   if (!g.valid) {
     mask_.release();

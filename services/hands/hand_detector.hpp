@@ -18,6 +18,8 @@
 
 #include <vector>
 
+#include <optional>
+
 #include <opencv2/core.hpp>
 
 #include "hands/hands_params.hpp"
@@ -46,7 +48,10 @@ struct HandGeometry {
 };
 
 // user_box: x, y (top-left), width, height in pixels. image: the frame's size.
-HandGeometry hand_geometry(const HandsParams& params, const cv::Rect2f& user_box, cv::Size image);
+// face: the user's face in this frame when known (hands.neck_in_faces: the rows below it down to the neck's
+// end are removed too, whatever the box's own ratio says).
+HandGeometry hand_geometry(const HandsParams& params, const cv::Rect2f& user_box, cv::Size image,
+                           const std::optional<cv::Rect2f>& face = std::nullopt);
 // The torso (its clothing): between the face rows and the body centre, the box's width less torso_inset_ratio
 // each side; empty when the box leaves none in the image.
 cv::Rect torso_rect(const HandsParams& params, const HandGeometry& geometry);
@@ -74,7 +79,8 @@ class HandDetector {
   HandDetector(const HandsParams& params, SkinClassifier skin);
 
   // Whole stage for one frame (CV_8UC3 BGR), with the detector's own classifier or `skin` (e.g. an adapted one).
-  HandResult detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin = nullptr);
+  HandResult detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin = nullptr,
+                    const std::optional<cv::Rect2f>& face = std::nullopt);
 
   // Alg. 1 then Alg. 2 on a ready skin mask (CV_8UC1, nonzero = skin) whose top-left pixel is image pixel
   // origin. Removals are NOT applied here: the mask is used as given (detect() applies them first).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "hands/colour_check.hpp"
 
@@ -13,6 +14,7 @@ HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior, co
 void HandObserver::reset() {
   adapter_.reset();
   track_id_ = -1;
+  face_in_box_.reset();
 }
 
 HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
@@ -31,7 +33,20 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
     return none;
   }
   if (face) adapter_.learn_user(bgr, *user.face);
-  const HandGeometry g = hand_geometry(p, box, bgr.size());
+  // The face: given, or the last one carried along with the box (the tracker gives it about once a second).
+  const cv::Rect2f& ub = user.box;
+  const bool box_ok = ub.width > 0 && ub.height > 0 && std::isfinite(ub.x) && std::isfinite(ub.y);
+  std::optional<cv::Rect2f> face_now;
+  if (face) {
+    face_now = *user.face;
+    if (box_ok)
+      face_in_box_ = cv::Rect2f((face_now->x - ub.x) / ub.width, (face_now->y - ub.y) / ub.height, face_now->width / ub.width,
+                                face_now->height / ub.height);
+  } else if (face_in_box_ && box_ok) {
+    const cv::Rect2f& f = *face_in_box_;
+    face_now = cv::Rect2f(ub.x + f.x * ub.width, ub.y + f.y * ub.height, f.width * ub.width, f.height * ub.height);
+  }
+  const HandGeometry g = hand_geometry(p, box, bgr.size(), face_now);
   if (g.valid) {
     const double m = p.skin.adapt.scene_margin * box.width;
     // Clamped before the conversion to int: a box far beyond the image must not overflow it.
@@ -42,7 +57,7 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
     adapter_.learn_scene(bgr, exclude);
     adapter_.learn_clothing(bgr, torso_rect(p, g));
   }
-  return detector_.detect(bgr, box, &adapter_.classifier());
+  return detector_.detect(bgr, box, &adapter_.classifier(), face_now);
 }
 
 }  // namespace gpilot

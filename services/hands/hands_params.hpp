@@ -104,6 +104,9 @@ struct HandsParams {
   double face_remove_ratio = 0.2;   //!< top fraction of the box removed (face and neck)
   double legs_remove_ratio = 0.35;  //!< bottom fraction of the box removed (legs, feet, hands at rest): below the
                                     //!< hips, so a hand low in front of the body (FURTHER) stays in
+  double neck_in_faces = 0.35;      //!< with the user's face known (USER_TRACK's, carried along with the box between
+                                    //!< re-checks), this many face heights below it are neck, removed with the face
+                                    //!< band whatever face_remove_ratio leaves (0 = the box's ratio alone; ours)
   double shoulder_centre_ratio = 0.2;  //!< p_uc sits this fraction of the box height below its top, centred
   double body_centre_ratio = 0.5;   //!< p_bc: the box centre (the paper)
   double hand_square_ratio = 0.25;  //!< hand square side = ratio × box width (paper w/4)
@@ -155,6 +158,7 @@ struct HandsParams {
     v("roi_extend_bottom", roi_extend_bottom, 0.0, 5.0, "search rectangle: added below, user box heights");
     v("face_remove_ratio", face_remove_ratio, 0.0, 1.0, "top fraction of the user box removed (face, neck)");
     v("legs_remove_ratio", legs_remove_ratio, 0.0, 1.0, "bottom fraction of the user box removed (legs, feet)");
+    v("neck_in_faces", neck_in_faces, 0.0, 5.0, "face heights below a known face removed as neck (0 = the box ratio alone; ours)");
     v("shoulder_centre_ratio", shoulder_centre_ratio, 0.0, 1.0, "p_uc: fraction of box height below the top");
     v("body_centre_ratio", body_centre_ratio, 0.0, 1.0, "p_bc: fraction of box height below the top (paper: centre)");
     v("hand_square_ratio", hand_square_ratio, 0.01, 1.0, "hand square side / box width (paper 1/4)");
