@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hands_score.hpp"
+#include "test_people.hpp"
 
 namespace gpilot {
 namespace {
@@ -18,19 +19,11 @@ SkinClassifier one_colour_classifier() {
   return SkinClassifier(kBins, std::move(table));
 }
 
-// A person whose left arm (image right) is stretched out sideways: elbow (150,100), wrist (180,100), so the
-// hand square's centre is (190,100); the right arm hangs.
+// The upright person (test_people.hpp) with the left arm (image right) stretched out sideways: elbow (150,100),
+// wrist (180,100), so the hand square's centre is (190,100); the right arm hangs.
 PersonKeypointTruth out_person() {
-  BodyKeypoints k;
-  auto set = [](BodyPoint& p, float x, float y) { p = BodyPoint{{x, y}, 2}; };
-  set(k.left_shoulder, 120, 100);
-  set(k.right_shoulder, 80, 100);
-  set(k.left_hip, 115, 180);
-  set(k.right_hip, 85, 180);
-  set(k.left_elbow, 150, 100);
-  set(k.left_wrist, 180, 100);
-  set(k.right_elbow, 68, 140);
-  set(k.right_wrist, 62, 178);
+  BodyKeypoints k = test_people::upright();
+  test_people::arm(k.left_elbow, k.left_wrist, {150, 100}, {180, 100});
   return keypoint_truth(k);
 }
 
