@@ -89,6 +89,7 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
       if (keep_unopened) unopened_(r - g.roi.tl()).setTo(0);
     }
   const int dropped = drop_large_blobs(mask_, g, keep_unopened ? &unopened_ : nullptr);
+  find_hanging_forearms(g);
   HandResult res = run(mask_, g.roi.tl(), g);
   // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
   // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
@@ -134,6 +135,26 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
   res.blobs_dropped = dropped;
   res.armless_dropped = armless;
   return res;
+}
+
+void HandDetector::find_hanging_forearms(const HandGeometry& g) {
+  hanging_ = {false, false};
+  if (!params_.out_not_beside_hanging_forearm || params_.front_max_upright <= 0 || mask_.empty()) return;
+  // A forearm hanging at rest beside the body: a skin component much taller than wide (front_max_upright), its
+  // middle inside the box in the outer half of its side, reaching below the body centre. That side's arm is down:
+  // no hand of it is stretched out (a skin-coloured wall at the frame's bottom beside a resting user was an OUT
+  // hand, joined to the torso through the resting forearm: a false DOWN in the closed-loop nuisances runs).
+  const int n = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
+  const double quarter = 0.25 * g.width;
+  for (int i = 1; i < n; ++i) {
+    const int* st = stats_.ptr<int>(i);
+    const int x = st[cv::CC_STAT_LEFT] + g.roi.x, y = st[cv::CC_STAT_TOP] + g.roi.y;
+    const int w = st[cv::CC_STAT_WIDTH], h = st[cv::CC_STAT_HEIGHT];
+    const double cx = x + w / 2.0;
+    if (h <= params_.front_max_upright * w || y + h <= g.body_centre.y) continue;
+    if (cx < g.box.x || cx >= g.box.br().x || std::abs(cx - g.shoulder_centre.x) < quarter) continue;
+    hanging_[cx < g.shoulder_centre.x ? 0 : 1] = true;
+  }
 }
 
 void HandDetector::erase_component(const HandGeometry& g, cv::Point pixel) {
@@ -233,6 +254,7 @@ int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g, cv::Mat
 
 HandResult HandDetector::detect_on_mask(const cv::Mat& mask, cv::Point origin, const HandGeometry& geometry) {
   CV_Assert(mask.type() == CV_8UC1);
+  hanging_ = {false, false};
   cv::Mat binary = cv::min(mask, 1);
   return run(binary, origin, geometry);
 }
@@ -262,6 +284,7 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
   // the image border cuts is not judged: a resting hand or scenery at the cut edge, whose end is out of view.
   const bool cut_body = params_.needs_body_centre && !g.body_centre_in_view;
   auto out_candidate = [&](int ix, int iy) {
+    if (hanging_[ix < ucx ? 0 : 1]) return false;
     if (cut_body && iy > ucy && square_cut_by_side_or_bottom(cv::Point2f(ix, iy), side, g.image)) return false;
     const double sx = ix < ucx ? ucx - shoulder_dx : ucx + shoulder_dx;
     const double dx = std::abs(ix - sx), dy = iy - ucy;

@@ -132,6 +132,9 @@ struct HandsParams {
   double out_min_angle_deg = 25.0;   //!< Alg. 1: below the shoulder line, a hand this far from straight down (seen
                                      //!< from its shoulder) or more: a hanging forearm beside the body is not OUT
                                      //!< (the paper's DOWN arm points 30 deg from down)
+  bool out_not_beside_hanging_forearm = true;  //!< Alg. 1: no hand on a side where a forearm hangs at rest inside the
+                                              //!< box (a skin component front_max_upright times taller than wide in
+                                              //!< the outer half of the box, below the body centre): that arm is down
   bool arm_connected = true;         //!< Alg. 1: the hand must be joined to the torso by skin or the torso's
                                      //!< clothing colours (an arm, bent or straight, bare or in sleeves)
   double arm_radius_ratio = 0.03;    //!< gaps up to twice this many box widths along the arm are closed
@@ -175,6 +178,7 @@ struct HandsParams {
     v("shoulder_half_ratio", shoulder_half_ratio, 0.0, 2.0, "shoulders this many box widths either side of p_uc");
     v("reach_ratio", reach_ratio, 0.0, 10.0, "Alg. 1: hand within this many box widths of its shoulder (0 = off; ours)");
     v("out_min_angle_deg", out_min_angle_deg, 0.0, 90.0, "Alg. 1: hand below the shoulders this far from straight down at least (0 = off; ours)");
+    v("out_not_beside_hanging_forearm", out_not_beside_hanging_forearm, "Alg. 1: no hand on a side whose forearm hangs at rest in the box (ours)");
     v("arm_connected", arm_connected, "Alg. 1: the hand must be joined to the torso by skin or clothing colours (ours)");
     v("arm_radius_ratio", arm_radius_ratio, 0.005, 0.5, "arm_connected closes gaps up to twice this, box widths");
     v("torso_inset_ratio", torso_inset_ratio, 0.0, 0.45, "torso = box less this many box widths each side (arm_connected; ours)");

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "capture/synthetic_world.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "hands/hand_detector.hpp"
@@ -156,4 +158,41 @@ TEST(HandsSynthetic, TheLastFaceIsCarriedWithTheBoxUntilTheTrackChanges) {
   const HandResult fresh = obs.observe(f.bgr, UserView{high, std::nullopt, 2});
   EXPECT_EQ(fresh.kind, HandKind::Front) << fresh.vector;
   EXPECT_LT(fresh.vector.y, 0);
+}
+
+// A skin-coloured patch of scenery at the bottom beside a resting user, joined to their hanging forearm (the
+// closed-loop `nuisances` runs: a yellow palace wall at the frame's bottom edge read as an OUT hand while the
+// drone was high, a false DOWN at rest). With a forearm hanging at rest on that side, that arm is down: no hand
+// of it is stretched out (hands.out_not_beside_hanging_forearm).
+TEST(HandsSynthetic, NoStretchedOutHandOnTheSideOfAForearmHangingAtRest) {
+  HandsParams p;
+  p.skin.adapt.enabled = false;
+  const SyntheticWorld world(SyntheticParams{}, Scenario::load("idle"), 1);
+  const SkinClassifier skin(SkinModel::load(resolve_project_path(p.skin.model)), p.skin.threshold);
+  const SyntheticFrame f = world.render(1.0, 25, std::nullopt);
+  const cv::Rect2f box = f.truth.user_box;
+  // The forearm hanging on the image's right: its lowest skin pixel, and its colour.
+  const cv::Point2f wrist = f.truth.left_wrist;
+  ASSERT_GT(wrist.x, box.x + box.width / 2) << "the user's left hand is on the image's right";
+  const cv::Vec3b tone = f.bgr.at<cv::Vec3b>(cv::Point(wrist));
+  // A patch of that colour 3 px beside the forearm's outer edge (apart from it, as the opened wall was; the arm
+  // test's closing joins them), out to 0.6 box widths beside the box (less than max_blob_hand_areas).
+  int edge = static_cast<int>(wrist.x);
+  while (edge < f.bgr.cols - 1 && cv::norm(f.bgr.at<cv::Vec3b>(cv::Point(edge + 1, static_cast<int>(wrist.y))), tone, cv::NORM_L1) < 60) ++edge;
+  cv::Mat scene = f.bgr.clone();
+  const float s = box.width / 4;
+  const float x0 = static_cast<float>(edge + 4);
+  cv::rectangle(scene, cv::Rect2f(x0, wrist.y - s, box.x + box.width + 0.6f * box.width - x0, 1.5f * s),
+                cv::Scalar(tone[0], tone[1], tone[2]), cv::FILLED);
+  HandDetector with_rule(p, skin);
+  HandsParams off = p;
+  off.out_not_beside_hanging_forearm = false;
+  HandDetector without(off, skin);
+  const HandResult w = without.detect(scene, box);
+  EXPECT_EQ(w.kind, HandKind::Out) << "the patch should be an OUT hand without the rule: blobs " << w.blobs_dropped
+                                    << ", armless " << w.armless_dropped << ", outside " << w.skin_outside << ", box " << box;
+  const HandResult r = with_rule.detect(scene, box);
+  EXPECT_EQ(r.kind, HandKind::None) << r.vector;
+  // The untouched frame: no hand either way.
+  EXPECT_EQ(with_rule.detect(f.bgr, box).kind, HandKind::None);
 }
