@@ -32,4 +32,13 @@ inline cv::Rect2d face_from_body(const cv::Rect2d& body, const BodyProportions& 
   return cv::Rect2d(cx - fw / 2, body.y + p.top_in_faces * fh, fw, fh);
 }
 
+// A rectangle given with box `from` (a face with the body box it came with), at the same place in units of the
+// box once the box is `to`: the face the tracker's re-check found, published with the next frame, and the last
+// face the hands stage was given, on frames without one. r itself when `from` has no area.
+inline cv::Rect2d carried_with_box(const cv::Rect2d& r, const cv::Rect2d& from, const cv::Rect2d& to) {
+  if (!(from.width > 0 && from.height > 0)) return r;
+  const double kx = to.width / from.width, ky = to.height / from.height;
+  return cv::Rect2d(to.x + (r.x - from.x) * kx, to.y + (r.y - from.y) * ky, r.width * kx, r.height * ky);
+}
+
 }  // namespace gpilot

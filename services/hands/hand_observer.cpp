@@ -14,7 +14,7 @@ HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior, co
 void HandObserver::reset() {
   adapter_.reset();
   track_id_ = -1;
-  face_in_box_.reset();
+  last_face_.reset();
 }
 
 HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
@@ -39,12 +39,9 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
   std::optional<cv::Rect2f> face_now;
   if (face) {
     face_now = *user.face;
-    if (box_ok)
-      face_in_box_ = cv::Rect2f((face_now->x - ub.x) / ub.width, (face_now->y - ub.y) / ub.height, face_now->width / ub.width,
-                                face_now->height / ub.height);
-  } else if (face_in_box_ && box_ok) {
-    const cv::Rect2f& f = *face_in_box_;
-    face_now = cv::Rect2f(ub.x + f.x * ub.width, ub.y + f.y * ub.height, f.width * ub.width, f.height * ub.height);
+    if (box_ok) last_face_ = FaceWithBox{*user.face, ub};
+  } else if (last_face_ && box_ok) {
+    face_now = cv::Rect2f(carried_with_box(last_face_->face, last_face_->box, ub));
   }
   const HandGeometry g = hand_geometry(p, box, bgr.size(), face_now);
   if (g.valid) {

@@ -58,9 +58,12 @@ class HandObserver {
   SkinAdapter adapter_;
   BodyProportions body_;
   int32_t track_id_ = -1;
-  //! The last face given for this track, in units of the box it came with (x, y from the box's corner): the face
-  //! where that box is now, on frames without one.
-  std::optional<cv::Rect2f> face_in_box_;
+  //! The last face given for this track and the box it came with: carried along with the box (carried_with_box)
+  //! on frames without one.
+  struct FaceWithBox {
+    cv::Rect2d face, box;
+  };
+  std::optional<FaceWithBox> last_face_;
 };
 
 }  // namespace gpilot

@@ -328,13 +328,8 @@ const TrackOutput& UserTracker::track(const cv::Mat& frame) {
     case TrackStatus::kTracking:
       track_frame(frame);
       // The last frame's re-check found the face: it goes out now, where the track moved it.
-      if (rechecked && out_.status == TrackStatus::kTracking && out_.track_id == rechecked->track_id && !out_.face) {
-        const cv::Rect2d& from = rechecked->box;
-        const double k = from.width > 0 ? out_.box.width / from.width : 1.0;
-        const cv::Rect2d& f = rechecked->face;
-        const cv::Point2d c = (out_.box.tl() + out_.box.br()) * 0.5 + ((f.tl() + f.br()) * 0.5 - (from.tl() + from.br()) * 0.5) * k;
-        found_face(frame, cv::Rect2d(c.x - k * f.width / 2, c.y - k * f.height / 2, k * f.width, k * f.height));
-      }
+      if (rechecked && out_.status == TrackStatus::kTracking && out_.track_id == rechecked->track_id && !out_.face)
+        found_face(frame, carried_with_box(rechecked->face, rechecked->box, out_.box));
       break;
     case TrackStatus::kLost: lost_frame(frame); break;
     case TrackStatus::kSearching:

@@ -137,6 +137,24 @@ TEST(BodyProportions, FaceFromBodyInvertsBodyFromFace) {
   }
 }
 
+// carried_with_box: a face given with one box, where a moved and scaled box puts it (the re-check's face on the
+// next frame, the hands stage's last face); the face a box makes is carried to the face the other box makes.
+TEST(BodyProportions, CarriedWithBoxKeepsThePlaceInUnitsOfTheBox) {
+  const cv::Rect2d from(100, 50, 80, 200), to(130, 40, 120, 300);  // moved, and 1.5 times larger
+  const cv::Rect2d c = carried_with_box(cv::Rect2d(120, 60, 30, 30), from, to);
+  EXPECT_DOUBLE_EQ(c.x, 160.0);  // 20 px into the box: 30 px into the larger one
+  EXPECT_DOUBLE_EQ(c.y, 55.0);
+  EXPECT_DOUBLE_EQ(c.width, 45.0);
+  EXPECT_DOUBLE_EQ(c.height, 45.0);
+  const cv::Rect2d made = carried_with_box(face_from_body(from, kPreset), from, to), want = face_from_body(to, kPreset);
+  EXPECT_NEAR(made.x, want.x, 1e-9);
+  EXPECT_NEAR(made.y, want.y, 1e-9);
+  EXPECT_NEAR(made.width, want.width, 1e-9);
+  EXPECT_NEAR(made.height, want.height, 1e-9);
+  // A box without area carries nothing: the rectangle as given.
+  EXPECT_EQ(carried_with_box(cv::Rect2d(1, 2, 3, 4), cv::Rect2d(0, 0, 0, 10), to), cv::Rect2d(1, 2, 3, 4));
+}
+
 TEST(BodyFit, FaceNearTheBottomEdgeIsRefused) {
   // GIVEN a face whose chin is 10 px above the frame's bottom (the body below the image)
   const Drawn d = draw_person({640, 480}, {300, 430}, 40, 2.75, 7.0);
