@@ -88,8 +88,14 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
       mask_(r - g.roi.tl()).setTo(0);
       if (keep_unopened) unopened_(r - g.roi.tl()).setTo(0);
     }
-  const int dropped = drop_large_blobs(mask_, g, keep_unopened ? &unopened_ : nullptr);
-  find_hanging_forearms(g);
+  // One labelling of the skin components serves both shape rules (the blobs dropped are gone whole, so the
+  // components left keep their labels and stats).
+  const bool hanging_rule = params_.out_not_beside_hanging_forearm && params_.front_max_upright > 0;
+  const int components = params_.max_blob_hand_areas > 0 || hanging_rule
+                             ? cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S)
+                             : 0;
+  const int dropped = drop_large_blobs(mask_, g, components, keep_unopened ? &unopened_ : nullptr);
+  find_hanging_forearms(g, hanging_rule ? components : 0);
   HandResult res = run(mask_, g.roi.tl(), g);
   // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
   // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
@@ -137,16 +143,15 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
   return res;
 }
 
-void HandDetector::find_hanging_forearms(const HandGeometry& g) {
+void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
   hanging_ = {false, false};
-  if (!params_.out_not_beside_hanging_forearm || params_.front_max_upright <= 0 || mask_.empty()) return;
   // A forearm hanging at rest beside the body: a skin component much taller than wide (front_max_upright), its
   // middle inside the box in the outer half of its side, reaching below the body centre. That side's arm is down:
   // no hand of it is stretched out (a skin-coloured wall at the frame's bottom beside a resting user was an OUT
   // hand, joined to the torso through the resting forearm: a false DOWN in the closed-loop nuisances runs).
-  const int n = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
   const double quarter = 0.25 * g.width;
   for (int i = 1; i < n; ++i) {
+    if (blob_dropped_[static_cast<size_t>(i)]) continue;
     const int* st = stats_.ptr<int>(i);
     const int x = st[cv::CC_STAT_LEFT] + g.roi.x, y = st[cv::CC_STAT_TOP] + g.roi.y;
     const int w = st[cv::CC_STAT_WIDTH], h = st[cv::CC_STAT_HEIGHT];
@@ -219,13 +224,12 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const Hand
   return false;
 }
 
-int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g, cv::Mat* also) {
-  if (params_.max_blob_hand_areas <= 0 || mask.empty()) return 0;
+int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g, int n, cv::Mat* also) {
+  blob_dropped_.assign(static_cast<size_t>(std::max(n, 1)), 0);
+  if (params_.max_blob_hand_areas <= 0 || n <= 1) return 0;
   // Measured outside the user box only: a wall or a wooden cabinet beside the user is skin-coloured there,
   // while a bare arm reaching out leaves only its forearm and hand outside (a bare torso is Alg. 2's matter).
   const double max_area = params_.max_blob_hand_areas * g.hand_side * g.hand_side;
-  const int n = cv::connectedComponents(mask, labels_, 8, CV_32S);
-  if (n <= 1) return 0;
   std::vector<int> outside(static_cast<size_t>(n), 0);
   const cv::Rect box = g.box - g.roi.tl();
   for (int y = 0; y < mask.rows; ++y) {
@@ -234,7 +238,7 @@ int HandDetector::drop_large_blobs(cv::Mat& mask, const HandGeometry& g, cv::Mat
     for (int x = 0; x < mask.cols; ++x)
       if (l[x] && !(row_in && x >= box.x && x < box.br().x)) ++outside[static_cast<size_t>(l[x])];
   }
-  std::vector<uint8_t> drop(static_cast<size_t>(n), 0);
+  std::vector<uint8_t>& drop = blob_dropped_;
   int dropped = 0;
   for (int i = 1; i < n; ++i)
     if (outside[static_cast<size_t>(i)] > max_area) drop[static_cast<size_t>(i)] = 1, ++dropped;

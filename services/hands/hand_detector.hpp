@@ -94,10 +94,12 @@ class HandDetector {
 
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
-  // Clears skin components too large to be a hand from mask01, and the same pixels from `also` if given.
-  int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry, cv::Mat* also = nullptr);
-  // Sets hanging_ from mask_: the sides (image left, right) where a forearm hangs at rest beside the body.
-  void find_hanging_forearms(const HandGeometry& geometry);
+  // Clears skin components too large to be a hand from mask01 (labelled in labels_: n labels, 0 background),
+  // and the same pixels from `also` if given; marks them in blob_dropped_.
+  int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry, int n, cv::Mat* also = nullptr);
+  // Sets hanging_ from the n components of stats_ not dropped: the sides (image left, right) where a forearm
+  // hangs at rest beside the body (n 0: none looked for).
+  void find_hanging_forearms(const HandGeometry& geometry, int n);
   // Clears the skin component of mask_ holding an image pixel (a candidate this frame will not take).
   void erase_component(const HandGeometry& geometry, cv::Point pixel);
   void learn_torso_colours(const cv::Mat& bgr, const HandGeometry& geometry);
@@ -112,6 +114,7 @@ class HandDetector {
   HandsParams params_;
   SkinClassifier skin_;
   cv::Mat mask_, unopened_, integral_, labels_, arm_, stats_, centroids_;
+  std::vector<uint8_t> blob_dropped_;  //!< per label of labels_: cleared by drop_large_blobs
   std::array<bool, 2> hanging_{};  //!< a forearm hangs at rest on the image's left / right side of p_uc
   std::vector<int64_t> torso_hist_;
   int64_t torso_pixels_ = 0;
