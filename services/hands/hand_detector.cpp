@@ -334,10 +334,7 @@ HandResult HandDetector::run(const cv::Mat& mask, cv::Point origin, const HandGe
     res.hand_box = cv::Rect(p.x - half, p.y - half, side, side);
   };
   // The paper's pixel counts suit a user a few metres away; a far user's hand fills less of them.
-  const auto min_skin = [&](int paper, double share) {
-    const double square = share * side * side;
-    return share > 0 && square < paper ? static_cast<int>(square) : paper;
-  };
+  const auto min_skin = [&](int paper, double share) { return min_hand_skin(paper, share, side); };
   const double out_share = p_out.y > ucy && params_.down_min_skin_square_share > 0 ? params_.down_min_skin_square_share
                                                                                    : params_.min_skin_square_share;
   if (res.skin_outside > min_skin(params_.out_min_skin, out_share)) {

@@ -19,6 +19,13 @@ inline int hand_square_side(const HandsParams& p, double box_width, cv::Size ima
   return std::max(1, static_cast<int>(std::lround(std::min(box_width * p.hand_square_ratio, 2 * image_side + 1))));
 }
 
+// The skin pixels Alg. 1 or 2 need (more than this): the paper's count, or `share` of the hand square's area where
+// that is less (a far user's hand fills less of the paper's count; share 0: the paper's count).
+inline int min_hand_skin(int paper, double share, int side) {
+  const double square = share * side * side;
+  return share > 0 && square < paper ? static_cast<int>(square) : paper;
+}
+
 // The square of side `side` centred at p lies wholly in the image.
 inline bool square_in_view(cv::Point2f p, int side, cv::Size image) {
   const double half = side / 2.0;

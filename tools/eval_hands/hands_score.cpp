@@ -95,9 +95,8 @@ PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r, cons
   if (skin && params && !bgr.empty() && s.expected != HandKind::None && r.geometry.width > 0) {
     // The stage's own measures for this box: its hand square and the skin count Alg. 1 / 2 ask for there.
     const int side = hand_square_side(*params, r.geometry.width, bgr.size());
-    const double share_square = params->min_skin_square_share * side * side;
     const int paper = s.expected == HandKind::Out ? params->out_min_skin : params->front_min_skin;
-    const int need = params->min_skin_square_share > 0 && share_square < paper ? static_cast<int>(share_square) : paper;
+    const int need = min_hand_skin(paper, params->min_skin_square_share, side);
     for (const ArmKeypointTruth* arm : {&t.left, &t.right}) {
       const bool of_kind = s.expected == HandKind::Out ? arm->label == ArmTruth::Out : is_front(arm->label);
       if (!of_kind) continue;
