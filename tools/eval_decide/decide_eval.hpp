@@ -50,6 +50,8 @@ struct ScoreRules {
   double fine_angle_deg = 30.0; //!< a FINE command within this angle of the truth's direction is the right one
   double min_turn_s = 1.0;      //!< a turned piece of an OUT gesture shorter than this is the arm on its way to the
                                 //!< next piece: one gesture with it (its change is the true gesture's change)
+  double judged_after_s = 0.8;  //!< a run is judged frame by frame from this long after each true change (the
+                                //!< reaction bar, issue 14: median <= 0.5 s, max <= 0.8 s)
 };
 
 // The truth of one frame, as the scoring needs it.

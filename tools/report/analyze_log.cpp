@@ -7,10 +7,10 @@
 
 namespace gpilot {
 
-LogAnalysis analyse_log(const std::string& path, int buffer_size, const std::string& progress_tool) {
+LogAnalysis analyse_log(const std::string& path, const Settling& settling, const std::string& progress_tool) {
   LogReader log(path);
   LogDispatcher d;
-  RunAnalyzer a(buffer_size);
+  RunAnalyzer a(settling);
   d.on<image_t>(channel::kCamera, [&](const image_t& m, int64_t t) { a.on_camera(m, t); });
   d.on<user_track_t>(channel::kUserTrack, [&](const user_track_t& m, int64_t t) { a.on_track(m, t); });
   d.on<gesture_cmd_t>(channel::kGestureCmd, [&](const gesture_cmd_t& m, int64_t t) { a.on_command(m, t); });

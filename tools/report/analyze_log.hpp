@@ -19,6 +19,6 @@ struct LogAnalysis {
 };
 
 // Throws LogError for a missing, empty or foreign file. progress_tool: "" for no progress on stderr.
-LogAnalysis analyse_log(const std::string& path, int buffer_size, const std::string& progress_tool = "");
+LogAnalysis analyse_log(const std::string& path, const Settling& settling, const std::string& progress_tool = "");
 
 }  // namespace gpilot

@@ -20,9 +20,9 @@ namespace {
 
 constexpr const char* kName = "gpilot-report";
 
-int report(const std::string& log_path, const std::string& out_dir, bool print_json, int buffer_size) {
+int report(const std::string& log_path, const std::string& out_dir, bool print_json, const gpilot::DecideParams& decide) {
   using namespace gpilot;
-  const LogAnalysis a = analyse_log(log_path, buffer_size, kName);
+  const LogAnalysis a = analyse_log(log_path, settling_for(decide.rule, decide.buffer_size), kName);
   for (const auto& w : a.warnings) gpilot::log_warn("%s", w.c_str());
 
   const Summary& s = a.summary;
@@ -35,7 +35,8 @@ int report(const std::string& log_path, const std::string& out_dir, bool print_j
                                          {"log_mb", std::round(log_mb * 10) / 10},
                                          {"log_mb_per_minute", log_mb_per_min},
                                          {"log_events", a.events},
-                                         {"buffer_size", buffer_size},
+                                         {"decide_rule", decide.rule},
+                                         {"buffer_size", decide.buffer_size},
                                          {"rejected_messages", a.rejected},
                                          {"warnings", a.warnings}})
                             .dump(2) + "\n";
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   app.add_option("LOG", log, "the run's LCM log (lcm-logger)")->required();
   app.add_option("--out", out, "folder for summary.json and trajectory.png (created; none: stdout only)");
   app.add_flag("--json", json, "print the summary JSON on stdout instead of the table");
-  app.add_option("--config", config_file, "the run's config (for decide.buffer_size; default: built-in defaults)");
+  app.add_option("--config", config_file, "the run's config (decide.rule and decide.buffer_size: what the accuracy leaves out after a change; default: built-in defaults)");
   app.add_option("--set", sets, "override one key: section.key=value (repeatable)");
   std::string log_level;
   gpilot::add_standard_flags(app, kName, log_level);
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
   try {
     const gpilot::Config config = gpilot::load_config(config_file, sets);
     const auto decide = config.section<gpilot::DecideParams>("decide");
-    return report(log, out, json, decide.buffer_size);
+    return report(log, out, json, decide);
   } catch (const gpilot::ConfigError& e) {
     gpilot::log_error("config error: %s", e.what());
     return 2;

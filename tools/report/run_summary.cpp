@@ -66,7 +66,22 @@ void TrackVsTruth::add(int status, double iou) {
   iou_min = std::min(iou_min, iou);
 }
 
-RunAnalyzer::RunAnalyzer(int buffer_size) : buffer_size_(std::max(1, buffer_size)) {}
+Settling settling_for(const std::string& rule, int buffer_size) {
+  Settling s;
+  if (rule == "paper") {
+    s.frames = std::max(1, buffer_size) / 2 + 1;
+    s.why = std::to_string(s.frames) + " frames (decide.rule paper: decide.buffer_size / 2 + 1, buffer_size " +
+            std::to_string(std::max(1, buffer_size)) + ")";
+  } else {
+    s.seconds = ScoreRules{}.judged_after_s;
+    char b[96];
+    std::snprintf(b, sizeof b, "%.1f s (decide.rule %s, as the e2e tests judge)", s.seconds, rule.c_str());
+    s.why = b;
+  }
+  return s;
+}
+
+RunAnalyzer::RunAnalyzer(Settling settling) : settling_(std::move(settling)) {}
 
 int64_t Summary::logger_lost() const {
   int64_t n = 0;
@@ -221,13 +236,12 @@ Summary RunAnalyzer::summary() const {
     s.stages.push_back(h);
   }
 
-  // Accuracy: a frame counts once the expected gesture has been held long enough to fill the paper's
-  // buffer past its threshold, i.e. from settle_frames frames after each change of expected_mode.
+  // Accuracy: a frame counts once the rule deciding could have reacted to the expected gesture (Settling).
   Accuracy& a = s.accuracy;
-  a.settle_frames = buffer_size_ / 2 + 1;
+  a.settle_frames = settling_.frames;
+  a.settle_s = settling_.seconds;
   a.rule = "frames with a GESTURE_CMD and a GROUND_TRUTH of the same seq, expected_mode == mode; the first " +
-           std::to_string(a.settle_frames) + " frames (decide.buffer_size / 2 + 1, buffer_size " +
-           std::to_string(buffer_size_) + ") from the start and from each change of GROUND_TRUTH.expected_mode are not counted";
+           settling_.why + " from the start and from each change of GROUND_TRUTH.expected_mode are not counted";
   for (size_t b = 0; b < kRangeBandEdges.size(); ++b)
     s.range_bands.push_back({kRangeBandEdges[b], b + 1 < kRangeBandEdges.size() ? kRangeBandEdges[b + 1] : INFINITY, 0, 0, 0, {}});
   const auto band_of = [&s](int64_t seq, const std::map<int64_t, TruthBox>& boxes) -> RangeBand* {
@@ -250,17 +264,18 @@ Summary RunAnalyzer::summary() const {
     if (band) band->track.add(tr->second.status, v);
   }
   int prev = -1;
-  int64_t change_seq = 0;
+  int64_t change_seq = 0, change_utime = 0;
   bool first = true;
   for (const auto& [seq, expected] : expected_mode_by_seq_) {
     ++a.truth_frames;
-    if (first || expected != prev) change_seq = seq;
+    const int64_t utime = truth_by_seq_.at(seq).utime;
+    if (first || expected != prev) change_seq = seq, change_utime = utime;
     first = false;
     prev = expected;
     const auto c = command_mode_by_seq_.find(seq);
     if (c == command_mode_by_seq_.end()) continue;
     ++a.frames_with_command;
-    if (seq - change_seq < a.settle_frames) {
+    if (seq - change_seq < a.settle_frames || static_cast<double>(utime - change_utime) < a.settle_s * 1e6) {
       ++a.skipped_settling;
       continue;
     }
@@ -341,6 +356,7 @@ json summary_json(const Summary& s, const json& extra) {
                            {"frames_with_command", a.frames_with_command},
                            {"skipped_settling", a.skipped_settling},
                            {"settle_frames", a.settle_frames},
+                           {"settle_s", a.settle_s},
                            {"rule", a.rule},
                            {"confusion", {{"modes", modes}, {"rows_expected_columns_decided", a.confusion}}}};
   const auto track_json = [](const TrackVsTruth& t) {

@@ -49,8 +49,20 @@ struct StageHealth {
   std::string last_reject_reason;
 };
 
+// Which frames after a change of the expected gesture the accuracy leaves out: the paper's rule cannot decide
+// before its buffer is past the threshold (buffer_size / 2 + 1 frames); the evidence rule is judged from
+// ScoreRules::judged_after_s (0.8 s) on, as the e2e tests judge the flight.
+struct Settling {
+  int frames = 0;       // frames left out after each change (the paper's rule), or
+  double seconds = 0;   // the time left out after each change (by GROUND_TRUTH utime)
+  std::string why;      // in words, for the JSON
+};
+// decide.rule paper: buffer_size / 2 + 1 frames; else ScoreRules{}.judged_after_s.
+Settling settling_for(const std::string& rule, int buffer_size);
+
 struct Accuracy {
-  int settle_frames = 0;   // frames skipped after each change of expected_mode
+  int settle_frames = 0;   // frames skipped after each change of expected_mode (the paper's rule), or
+  double settle_s = 0;     // seconds skipped after each change (the evidence rule)
   std::string rule;        // the rule in words, for the JSON
   int64_t truth_frames = 0;         // GROUND_TRUTH messages
   int64_t frames_with_command = 0;  // of those, with a GESTURE_CMD of the same seq
@@ -137,8 +149,8 @@ inline const std::vector<double> kRangeBandEdges = {0.0, 3.0, 5.0, 8.0, 10.0};
 
 class RunAnalyzer {
  public:
-  // buffer_size: decide.buffer_size; the accuracy skips buffer_size / 2 + 1 frames after each change.
-  explicit RunAnalyzer(int buffer_size);
+  // settling: what the accuracy leaves out after each change of the expected gesture (settling_for).
+  explicit RunAnalyzer(Settling settling);
 
   // Each message with the time the logger received it; call in log order.
   void on_camera(const image_t& m, int64_t recv_utime);
@@ -157,7 +169,7 @@ class RunAnalyzer {
   struct FrameTimes {
     int64_t utime = 0, recv = 0;
   };
-  int buffer_size_;
+  Settling settling_;
   int64_t frames_ = 0, first_frame_utime_ = 0, last_frame_utime_ = 0;
   std::map<int64_t, FrameTimes> frames_by_seq_;
   std::map<int64_t, int> command_mode_by_seq_;

@@ -226,7 +226,8 @@ struct Judged { int checked = 0; std::map<int, int> per_gesture; Score decide; }
 // reported, not judged) on every frame from 0.8 s after it starts to its end (the decide stage reacts within
 // 0.5 s, median, and the flight stage's 0.3 s command spacing may hold a change a little longer).
 Judged judge_gestures(const Recorded& r, double rest_drift_m) {
-  constexpr int64_t kSettle = 800'000, kMinJudged = 800'000;
+  const auto kSettle = static_cast<int64_t>(ScoreRules{}.judged_after_s * 1e6);
+  constexpr int64_t kMinJudged = 800'000;
   Judged j;
   const auto truth = truth_frames(r);
   const auto commands = commands_per_frame(r);
@@ -319,17 +320,18 @@ double share_on_user(const Recorded& r) {
 }
 
 // GESTURE_CMD's mode against the truth's expected mode on the frames with the drone 8 to 10 m from the user
-// (horizontal), from 31 frames after each change of the expected mode (gpilot-report's settling, buffer 60):
-// the paper's range. Returns {judged frames, share right}.
+// (horizontal), from 0.8 s after each change of the expected mode (gpilot-report's settling for the evidence
+// rule): the paper's range. Returns {judged frames, share right}.
 std::pair<int64_t, double> accuracy_at_8_to_10_m(const Recorded& r) {
-  int64_t judged = 0, right = 0, since_change = 0;
+  const auto settle_us = static_cast<int64_t>(ScoreRules{}.judged_after_s * 1e6);
+  int64_t judged = 0, right = 0, change_utime = 0;
   int prev = -1;
   for (const auto& f : r.truth) {
-    since_change = f.m.expected_mode == prev ? since_change + 1 : 0;
+    if (f.m.expected_mode != prev) change_utime = f.m.utime;
     prev = f.m.expected_mode;
     const double range = std::hypot(f.m.person_position[0] - f.m.camera_position[0], f.m.person_position[1] - f.m.camera_position[1]);
     const auto c = r.commands.find(f.m.seq);
-    if (since_change < 31 || range < 8.0 || range >= 10.0 || c == r.commands.end()) continue;
+    if (f.m.utime - change_utime < settle_us || range < 8.0 || range >= 10.0 || c == r.commands.end()) continue;
     ++judged;
     right += c->second.mode == f.m.expected_mode;
   }

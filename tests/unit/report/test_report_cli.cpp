@@ -40,10 +40,10 @@ class ReportCliTest : public ::testing::Test {
 TEST_F(ReportCliTest, WritesSummaryAndPlotAndPrintsATable) {
   const test::CommandResult r = report(log + " --out " + dir / "run");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("gesture accuracy  94.7 %"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("gesture accuracy  60.0 %"), std::string::npos) << r.out;
   const std::string text = slurp(dir / "run/summary.json");
   const json j = json::parse(text);
-  EXPECT_EQ(j["gesture_accuracy"]["accuracy"], 0.947368) << text;  // six significant digits
+  EXPECT_EQ(j["gesture_accuracy"]["accuracy"], 0.6) << text;  // 36 of 60: judged from 0.8 s after each change
   EXPECT_EQ(j["frames"], 100);
   EXPECT_EQ(j["latency_ms"]["frame_to_gesture_cmd"], json({{"n", 100}, {"median", 74}, {"p95", 79}})) << text;
   // One member a line: deploy/run reads logger_lost with a line-wise sed.
@@ -54,7 +54,7 @@ TEST_F(ReportCliTest, WritesSummaryAndPlotAndPrintsATable) {
 }
 
 TEST_F(ReportCliTest, JsonOnStdoutAndTheBufferSizeFromConfig) {
-  const test::CommandResult r = report(log + " --json --set decide.buffer_size=20 --set decide.out_threshold=10 --set decide.front_threshold=10");
+  const test::CommandResult r = report(log + " --json --set decide.rule=paper --set decide.buffer_size=20 --set decide.out_threshold=10 --set decide.front_threshold=10");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);  // one object, nothing else on stdout
   EXPECT_EQ(j["buffer_size"], 20);
@@ -62,6 +62,13 @@ TEST_F(ReportCliTest, JsonOnStdoutAndTheBufferSizeFromConfig) {
   EXPECT_EQ(j["gesture_accuracy"]["correct"], 36) << r.out;
   EXPECT_EQ(j["gesture_accuracy"]["evaluated"], 78) << r.out;
   EXPECT_EQ(report(log + " --json --set decide.buffer_size=-3").code, 2);
+  // The evidence rule (the default) is judged from 0.8 s after each change: 20 frames at 25 Hz.
+  const test::CommandResult e = report(log + " --json");
+  ASSERT_EQ(e.code, 0) << e.err;
+  const json je = json::parse(e.out);
+  EXPECT_EQ(je["decide_rule"], "evidence");
+  EXPECT_EQ(je["gesture_accuracy"]["settle_s"], 0.8) << e.out;
+  EXPECT_EQ(je["gesture_accuracy"]["evaluated"], 60) << e.out;
 }
 
 TEST_F(ReportCliTest, ATruncatedLogIsReportedWithAWarning) {

@@ -10,10 +10,12 @@ namespace {
 // The default synthetic run: 100 frames at 25 Hz; expected FINE for seq 0..49, CLOSER for 50..99; decided
 // HOVER 0..30, FINE 31..80 (UP at 40), CLOSER 81..99 (FURTHER at 90); GESTURE_CMD 70 + seq % 10 ms after
 // the frame's utime, FLIGHT_SETPOINT 5 ms later; CAMERA received 1 ms after its utime.
-Summary analyse(const test::SyntheticRun& run, int buffer_size, std::vector<TrajectoryPoint>* path = nullptr) {
+// The paper's rule with this buffer size ("paper"), or the evidence rule ("evidence").
+Summary analyse(const test::SyntheticRun& run, int buffer_size, std::vector<TrajectoryPoint>* path = nullptr,
+                const std::string& rule = "paper") {
   const test::ScratchDir dir("gpilot_run_summary");
   test::write_synthetic_log(dir / "run.lcmlog", run);
-  LogAnalysis a = analyse_log(dir / "run.lcmlog", buffer_size);
+  LogAnalysis a = analyse_log(dir / "run.lcmlog", settling_for(rule, buffer_size));
   EXPECT_TRUE(a.warnings.empty()) << (a.warnings.empty() ? "" : a.warnings[0]);
   if (path) *path = a.path;
   return a.summary;
@@ -97,6 +99,21 @@ TEST_F(RunSummaryTest, AShorterBufferCountsTheLagAsErrors) {
   EXPECT_EQ(s.accuracy.confusion[gesture_cmd_t::MODE_CLOSER][gesture_cmd_t::MODE_FINE], 20);
 }
 
+TEST_F(RunSummaryTest, TheEvidenceRuleIsJudgedFromEightTenthsOfASecondAfterEachChange) {
+  // 0.8 s at 25 Hz: counted seq 20..49 and 70..99. HOVER 20..30 and FINE 70..80 are wrong (the reaction the
+  // paper's settling hid), the UP at 40 and the FURTHER at 90 as before.
+  const Summary s = analyse(run, 60, nullptr, "evidence");
+  const Accuracy& a = s.accuracy;
+  EXPECT_EQ(a.settle_frames, 0);
+  EXPECT_DOUBLE_EQ(a.settle_s, 0.8);
+  EXPECT_EQ(a.skipped_settling, 40);
+  EXPECT_EQ(a.evaluated, 60);
+  EXPECT_EQ(a.correct, 36);
+  EXPECT_EQ(a.confusion[gesture_cmd_t::MODE_FINE][gesture_cmd_t::MODE_HOVER], 11);
+  EXPECT_EQ(a.confusion[gesture_cmd_t::MODE_CLOSER][gesture_cmd_t::MODE_FINE], 11);
+  EXPECT_NE(a.rule.find("0.8 s (decide.rule evidence"), std::string::npos) << a.rule;
+}
+
 TEST_F(RunSummaryTest, ReactionScoresEveryFrameJoinedBySeq) {
   // The synthetic truth says REST throughout (its gesture field is 0): every command that is not HOVER is a
   // motion asked while resting. Episodes: FINE 31..39, UP 40, FINE 41..80, CLOSER 81..89, FURTHER 90,
@@ -141,7 +158,7 @@ TEST_F(RunSummaryTest, TrajectoryCarriesTheModeInForceAndTheUser) {
 }
 
 TEST(RunSummaryJson, IsOneObjectWithTheKeysTheLeadReads) {
-  RunAnalyzer a(60);
+  RunAnalyzer a(settling_for("paper", 60));
   const json j = summary_json(a.summary(), {{"log", "a \"b\"\n"}});
   ASSERT_TRUE(j.is_object());
   EXPECT_EQ(j.begin().key(), "log");  // the extra members come first
@@ -160,7 +177,7 @@ TEST(RunSummaryJson, IsOneObjectWithTheKeysTheLeadReads) {
 // LOST on 30..39 (the user out of view on 39); commands right on every frame but 25..39 WHEN summarised (buffer 2: 2 settling frames)
 // THEN the counts and IoUs per band are those.
 TEST(RunSummaryTrack, IouWithTheTrueBoxAndAccuracyPerRangeBand) {
-  RunAnalyzer a(2);
+  RunAnalyzer a(settling_for("paper", 2));
   for (int64_t seq = 0; seq < 40; ++seq) {
     ground_truth_t g{};
     g.seq = seq;
@@ -220,7 +237,7 @@ TEST(RunSummaryTrack, IouWithTheTrueBoxAndAccuracyPerRangeBand) {
 // The log's losses: gaps in seq per publisher's stream. GIVEN known gaps WHEN summarised THEN counted per
 // channel; only counter channels (one message per seq) make the logger's loss; a restart is a new stream.
 TEST(RunSummaryGaps, MessagesMissingFromTheLogPerChannel) {
-  RunAnalyzer a(60);
+  RunAnalyzer a(settling_for("paper", 60));
   auto camera = [&](int64_t seq) {
     image_t m{};
     m.seq = seq;
@@ -278,7 +295,7 @@ TEST(RunSummaryGaps, MessagesMissingFromTheLogPerChannel) {
 }
 
 TEST(RunSummaryGaps, NoGapsNoLoss) {
-  RunAnalyzer a(60);
+  RunAnalyzer a(settling_for("paper", 60));
   for (int64_t seq = 0; seq < 5; ++seq) {
     image_t m{};
     m.seq = seq;
