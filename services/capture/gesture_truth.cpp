@@ -75,7 +75,16 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
 
   // Alg. 2: a hand inside the box, in the band left after removing face/neck and legs, near the midline.
   if (cut_body) return e;
-  const float band0 = static_cast<float>(box.y + hp.face_remove_ratio * box.height);
+  // As the stage with the user's face known (hands.neck_in_faces): the rows down to neck_in_faces face heights
+  // below the face are neck. The truth's box is made from the true face (user_box_from_face), so that face is
+  // the box's own head.
+  float band0 = static_cast<float>(box.y + hp.face_remove_ratio * box.height);
+  const TrackerParams& tp = rules.tracker;
+  if (hp.neck_in_faces > 0 && tp.body_height_in_faces > 0) {
+    const double face_h = box.height / tp.body_height_in_faces;
+    const double face_y = box.y + tp.body_top_in_faces * face_h;
+    band0 = std::max(band0, static_cast<float>(face_y + face_h * (1.0 + hp.neck_in_faces)));
+  }
   const float band1 = static_cast<float>(y1 - hp.legs_remove_ratio * box.height);
   double nearest = std::numeric_limits<double>::infinity();
   cv::Point2f chosen;

@@ -6,7 +6,8 @@
 //   argmax of Alg. 1 reduces to the largest |p_uc.x - p.x| + λ2 (p_uc.y - p.y) among the hands outside the
 //   user box, and that of Alg. 2 to the smallest |p_bc.x - p.x| among the hands inside it;
 // - Alg. 1 sees a hand outside the box only inside the search rectangle (hands.roi_extend_*) and the image;
-// - Alg. 2 does not see a hand whose centre lies in the removed face/neck or legs band (hands.*_remove_ratio);
+// - Alg. 2 does not see a hand whose centre lies in the removed face/neck or legs band (hands.*_remove_ratio),
+//   nor one within hands.neck_in_faces face heights below the box's face (the stage, with the user's face known);
 // - the forearm's skin is ignored (the real Alg. 1 may pick a point on a raised forearm, not the hand);
 // - as the stage (hands.needs_body_centre), while the body centre's hand square is out of the image no hand in
 //   front is seen, nor a hand below the shoulders whose square the border cuts wherever on the hand (a square

@@ -84,6 +84,19 @@ TEST(GestureTruth, FrontHandOutsideTheGateOrTheBandIsNothing) {
   EXPECT_EQ(run({150, 80}).kind, hand_obs_t::KIND_NONE);   // in the removed face band (top 0.2 = 90)
 }
 
+TEST(GestureTruth, AHandUnderTheChinIsNeckAsTheStageSeesItWithTheFaceKnown) {
+  // The box's face (7 face heights tall, its top 0.25 face heights below the box's): 28.6 px high from y = 57.1,
+  // the neck down to 0.35 face heights below it, y = 95.7: past the 0.2 band (90). A hand at y = 93 is neck to
+  // the stage that knows the user's face (hands.neck_in_faces) and CLOSER by the box's ratio alone.
+  EXPECT_EQ(run({150, 93}).kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(run({150, 97}).mode, gesture_cmd_t::MODE_CLOSER);
+  TruthRules ratio_only;
+  ratio_only.hands.neck_in_faces = 0;
+  const ExpectedCommand e = expected_command(kBox, {cv::Point2f(150, 93), kRestLeft}, kImage, ratio_only);
+  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_CLOSER);
+  EXPECT_EQ(e.vector, cv::Point2f(0, -57));
+}
+
 TEST(GestureTruth, WithTheBodyCentreOutOfViewAHandInFrontOrCutByTheBorderIsNotSeen) {
   // GIVEN the box 100 x 200 at (100, 380): p_bc = (150, 480), its 25 px hand square half below the 480 px image
   // (the drone high and close, the hips below the frame), p_uc = (150, 420)
