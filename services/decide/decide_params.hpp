@@ -15,7 +15,7 @@ struct DecideParams {
   double lambda4 = 0.5;         //!< x := 0 when |y| > |lambda4 x| (paper 0.5)
   double gap_timeout_s = 0.5;   //!< a gap between observations longer than this empties the buffers
   // rule evidence (frames of evidence; see evidence_rule.hpp)
-  int evidence_enter = 4;       //!< a command is entered at this much evidence (a steady pose: this many frames)
+  int evidence_enter = 3;       //!< a command is entered at this much evidence (a steady pose: this many frames)
   int evidence_leave = 2;       //!< and left when its evidence falls to this
   int evidence_max = 10;        //!< evidence is capped here: letting go takes (max - leave) / decay frames
   double evidence_decay = 1.0;  //!< evidence lost per frame that does not support a command

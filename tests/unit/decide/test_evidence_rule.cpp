@@ -162,7 +162,7 @@ TEST(EvidenceRule, ThresholdsComeFromParams) {
 TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
   const DecideParams p;
   EXPECT_EQ(p.rule, "evidence");
-  // A steady pose is commanded on its 7th frame (0.24 s at 25 fps: two 2-frame medians to tell it still, then 4
+  // A steady pose is commanded on its 6th frame (0.2 s at 25 fps: two 2-frame medians to tell it still, then 3
   // frames of evidence), the paper's Alg. 3 on its 31st.
   GestureDecider d(p);
   HandObservation o;
@@ -171,12 +171,12 @@ TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
   o.user_box_width = kBox;
   o.track_id = 1;
   std::vector<GestureMode> modes;
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < 6; ++i) {
     o.utime = 1'000'000 + i * 40'000;
     modes.push_back(d.update(o).mode);
   }
   EXPECT_EQ(modes, (std::vector<GestureMode>{GestureMode::Hover, GestureMode::Hover, GestureMode::Hover, GestureMode::Hover,
-                                             GestureMode::Hover, GestureMode::Hover, GestureMode::Closer}));
+                                             GestureMode::Hover, GestureMode::Closer}));
 }
 
 TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {
