@@ -11,6 +11,8 @@
 #include "capture/synthetic_world.hpp"
 #include "image_codec.hpp"
 
+#include <turbojpeg.h>
+
 using namespace gpilot;
 
 namespace {
@@ -48,5 +50,25 @@ void BM_ImageToMatRaw(benchmark::State& state) {
   state.counters["bytes"] = static_cast<double>(msg.size);
 }
 BENCHMARK(BM_ImageToMatRaw)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
+
+// libjpeg-turbo's DCT-scaled decode of the same frame at 1/denominator of each side (8x8 blocks inverse-
+// transformed to 4x4, 2x2, 1x1: the entropy decoding stays whole): what a stage that needs fewer pixels would
+// pay (issue 14: "where a stage needs fewer pixels, decode scaled"). Denominator 1 is image_to_mat's decode.
+void BM_TurboJpegScaledDecode(benchmark::State& state) {
+  const image_t msg = tour_frame(static_cast<int>(state.range(0)), image_t::PIXEL_FORMAT_JPEG);
+  const int denom = static_cast<int>(state.range(1));
+  const int w = (msg.width + denom - 1) / denom, h = (msg.height + denom - 1) / denom;  // TJSCALED
+  cv::Mat out(h, w, CV_8UC3);
+  tjhandle tj = tjInitDecompress();
+  for (auto _ : state)
+    if (tjDecompress2(tj, msg.data.data(), static_cast<unsigned long>(msg.size), out.data, w, static_cast<int>(out.step), h,
+                      TJPF_BGR, 0) != 0) {
+      state.SkipWithError(tjGetErrorStr2(tj));
+      break;
+    }
+  tjDestroy(tj);
+  state.counters["pixels"] = static_cast<double>(w) * h;
+}
+BENCHMARK(BM_TurboJpegScaledDecode)->ArgsProduct({{640, 1280}, {1, 2, 4, 8}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
