@@ -164,7 +164,6 @@ void RunAnalyzer::on_vehicle(const vehicle_state_t& m, int64_t recv_utime) {
 
 void RunAnalyzer::on_truth(const ground_truth_t& m, int64_t) {
   note_seq("GROUND_TRUTH", true, "", m.seq);
-  expected_mode_by_seq_[m.seq] = m.expected_mode;
   truth_by_seq_[m.seq] = {m.utime, m.gesture, m.expected_mode, {m.expected_direction[0], m.expected_direction[1]}};
   truth_box_by_seq_[m.seq] = {{m.user_box[0], m.user_box[1], m.user_box[2], m.user_box[3]},
                               std::hypot(m.person_position[0] - m.camera_position[0], m.person_position[1] - m.camera_position[1])};
@@ -266,16 +265,16 @@ Summary RunAnalyzer::summary() const {
   int prev = -1;
   int64_t change_seq = 0, change_utime = 0;
   bool first = true;
-  for (const auto& [seq, expected] : expected_mode_by_seq_) {
+  for (const auto& [seq, truth] : truth_by_seq_) {
     ++a.truth_frames;
-    const int64_t utime = truth_by_seq_.at(seq).utime;
-    if (first || expected != prev) change_seq = seq, change_utime = utime;
+    const int expected = truth.expected_mode;
+    if (first || expected != prev) change_seq = seq, change_utime = truth.utime;
     first = false;
     prev = expected;
     const auto c = command_mode_by_seq_.find(seq);
     if (c == command_mode_by_seq_.end()) continue;
     ++a.frames_with_command;
-    if (seq - change_seq < a.settle_frames || static_cast<double>(utime - change_utime) < a.settle_s * 1e6) {
+    if (seq - change_seq < a.settle_frames || static_cast<double>(truth.utime - change_utime) < a.settle_s * 1e6) {
       ++a.skipped_settling;
       continue;
     }

@@ -173,7 +173,6 @@ class RunAnalyzer {
   int64_t frames_ = 0, first_frame_utime_ = 0, last_frame_utime_ = 0;
   std::map<int64_t, FrameTimes> frames_by_seq_;
   std::map<int64_t, int> command_mode_by_seq_;
-  std::map<int64_t, int> expected_mode_by_seq_;
   std::map<int64_t, TruthFrame> truth_by_seq_;
   struct TruthBox {
     std::array<float, 4> box{};
