@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "body_proportions.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/hand_obs_t.hpp"
 #include "hands/hand_square.hpp"
@@ -79,11 +80,9 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   // below the face are neck. The truth's box is made from the true face (user_box_from_face), so that face is
   // the box's own head.
   float band0 = static_cast<float>(box.y + hp.face_remove_ratio * box.height);
-  const TrackerParams& tp = rules.tracker;
-  if (hp.neck_in_faces > 0 && tp.body_height_in_faces > 0) {
-    const double face_h = box.height / tp.body_height_in_faces;
-    const double face_y = box.y + tp.body_top_in_faces * face_h;
-    band0 = std::max(band0, static_cast<float>(face_y + face_h * (1.0 + hp.neck_in_faces)));
+  if (hp.neck_in_faces > 0) {
+    const cv::Rect2d face = face_from_body(box, rules.tracker.body());
+    band0 = std::max(band0, static_cast<float>(neck_end_y(hp, face.y, face.height)));
   }
   const float band1 = static_cast<float>(y1 - hp.legs_remove_ratio * box.height);
   double nearest = std::numeric_limits<double>::infinity();

@@ -46,7 +46,7 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   // preset's, as a re-anchor with the track's fitted ratios made it, left the whole neck in the front band, and a
   // resting user's neck was a hand in front (CLOSER for 1 s). A known face says where the neck ends.
   if (face && p.neck_in_faces > 0 && std::isfinite(face->y) && std::isfinite(face->height) && face->height > 0)
-    g.face_rows_end = std::max(g.face_rows_end, row(face->y + face->height * (1.0 + p.neck_in_faces)));
+    g.face_rows_end = std::max(g.face_rows_end, row(neck_end_y(p, face->y, face->height)));
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.image = image;
   g.body_centre_in_view = square_in_view(g.body_centre, g.hand_side, image);

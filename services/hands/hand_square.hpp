@@ -26,6 +26,12 @@ inline int min_hand_skin(int paper, double share, int side) {
   return share > 0 && square < paper ? static_cast<int>(square) : paper;
 }
 
+// Where the neck below a known face ends (hands.neck_in_faces face heights below its bottom): the face band
+// reaches at least this row, in the stage (hand_geometry) and in the ground truth alike.
+inline double neck_end_y(const HandsParams& p, double face_y, double face_height) {
+  return face_y + face_height * (1.0 + p.neck_in_faces);
+}
+
 // The square of side `side` centred at p lies wholly in the image.
 inline bool square_in_view(cv::Point2f p, int side, cv::Size image) {
   const double half = side / 2.0;
