@@ -248,8 +248,9 @@ void Dsst::learn_colour(const Sample& s, bool first) {
   }
 }
 
-// Per pixel P(target | colour) = fg / (fg + bg); per cell of the window, its mean over a target-sized box
-// centred there (the correlation response's coordinates: the label peaks at the target's cell).
+// Per pixel P(target | colour) = fg / (fg + bg); per cell of the window, its Gaussian-weighted mean around
+// there (colour_centre_sigma; 0: the mean over a target-sized box, Staple's), in the correlation response's
+// coordinates (the label peaks at the target's cell).
 void Dsst::colour_response(const Sample& s) {
   if (patch_.type() != CV_8UC3) {  // a grey frame within a colour track: no colour evidence
     colour_resp_ = cv::Mat::zeros(cells_, CV_32F);
@@ -268,8 +269,14 @@ void Dsst::colour_response(const Sample& s) {
   cv::resize(likelihood_, colour_cells_, cells_, 0, 0, cv::INTER_AREA);
   const cv::Rect2d t = target_in_patch(s);
   const int cell = p_.cell_size;
-  const cv::Size k(std::max(1, static_cast<int>(std::lround(t.width / cell))), std::max(1, static_cast<int>(std::lround(t.height / cell))));
-  cv::boxFilter(colour_cells_, colour_resp_, CV_32F, k, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
+  if (p_.colour_centre_sigma > 0) {
+    // At least 0.3 cells: narrower, OpenCV's kernel is a single tap.
+    cv::GaussianBlur(colour_cells_, colour_resp_, cv::Size(), std::max(0.3, p_.colour_centre_sigma * t.width / cell),
+                     std::max(0.3, p_.colour_centre_sigma * t.height / cell), cv::BORDER_CONSTANT);
+  } else {
+    const cv::Size k(std::max(1, static_cast<int>(std::lround(t.width / cell))), std::max(1, static_cast<int>(std::lround(t.height / cell))));
+    cv::boxFilter(colour_cells_, colour_resp_, CV_32F, k, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
+  }
 }
 
 Dsst::Sample Dsst::translation_features(const cv::Mat& frame, cv::Point2d pos, double scale) {

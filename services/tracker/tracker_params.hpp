@@ -90,6 +90,12 @@ struct DsstParams {
   // 0.15 gains on 5 of 6 real clips and the synthetic tour (tracker README).
   double colour_weight = 0.15;
   double colour_learning_rate = 0.04;  //!< Staple's 0.04
+  // The colour score of a cell: P(target | colour) weighted by a Gaussian of this fraction of the target's
+  // sides centred there (0: Staple's mean over a target-sized box). Where the target is smaller than its box
+  // (dtb70_Surfing06's surfer crouching, 39x67 -> 18x30 px, while the box keeps about 34x49) the box's mean
+  // is flat over every position that holds the target, so it could not pull the box back onto it, and the
+  // filter slid onto the spray below; the Gaussian peaks on the target's colours (tracker README).
+  double colour_centre_sigma = 0.1;
   // A frame whose response is weak (PSR below wide_search_psr) is searched again in the 8 windows around, each
   // wide_search_offset of a window's side away; the best is taken if its PSR reaches wide_search_accept_psr
   // (a sure frame: redetect_psr's 10; from 7 it jumped onto the waves of dtb70_Surfing06, -0.14 AUC). A fast
@@ -120,6 +126,7 @@ struct DsstParams {
     v("reuse_detection_samples", reuse_detection_samples, "learn from the detection samples (false: sample again, as DSST)");
     v("colour_weight", colour_weight, 0.0, 1.0, "Staple: weight of the colour-histogram response (0: off; Staple 0.3)");
     v("colour_learning_rate", colour_learning_rate, 0.0, 1.0, "Staple: colour histograms' update rate (Staple 0.04)");
+    v("colour_centre_sigma", colour_centre_sigma, 0.0, 4.0, "colour score: Gaussian weight of this fraction of the target's sides (0: Staple's target-sized box)");
     v("wide_search_psr", wide_search_psr, 0.0, 100.0, "PSR below this: the 8 windows around are searched too (0: off)");
     v("wide_search_offset", wide_search_offset, 0.05, 2.0, "wide search: the windows' offset, fraction of the window's side");
     v("wide_search_accept_psr", wide_search_accept_psr, 0.0, 100.0, "wide search: a window is taken at this PSR at least");

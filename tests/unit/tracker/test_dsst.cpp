@@ -56,9 +56,13 @@ TEST(Fhog, MirroredEdgeUsesTheOppositeSignedBinAndTheSameUnsignedOne) {
 // Staple's colour model alone (colour_weight 1: the position is the colour response's peak): a red 40x60
 // block on a green field with grey speckle (the same speckle on the block, so FHOG sees nothing of the block's
 // own), moved 3 px right and 2 px down a frame, is followed to within a cell (4 px). PSR stays the filter's.
+// Staple's score (the mean over a target-sized box) peaks where the box holds the block, one place here; the
+// default Gaussian score is flat inside a uniform block wider than it (the filter places the box there) and
+// drifts up to 9 px alone.
 TEST(Dsst, ColourModelAloneFollowsAColouredBlock) {
   DsstParams p;
   p.colour_weight = 1.0;
+  p.colour_centre_sigma = 0.0;
   cv::Mat speckle(kFrame, CV_8UC1);
   cv::RNG rng(7);
   rng.fill(speckle, cv::RNG::UNIFORM, 0, 40);
@@ -78,6 +82,40 @@ TEST(Dsst, ColourModelAloneFollowsAColouredBlock) {
     EXPECT_NEAR(e.box.x + e.box.width / 2, tl.x + 20, 4.0) << "frame " << i;
     EXPECT_NEAR(e.box.y + e.box.height / 2, tl.y + 30, 4.0) << "frame " << i;
   }
+}
+
+// A target smaller than its box (a surfer crouching inside the box that held them standing): a red 20x30
+// block in a 40x60 box, moved 2 px right and 1 px down a frame. The colour score weighted by a Gaussian
+// (colour_centre_sigma) peaks on the block and keeps the box centred on it; Staple's mean over a target-sized
+// box is the same wherever the box still holds the whole block, so its peak says nothing of where the block is.
+double colour_alone_worst_centre_error(double centre_sigma) {
+  DsstParams p;
+  p.colour_weight = 1.0;
+  p.colour_centre_sigma = centre_sigma;
+  cv::Mat speckle(kFrame, CV_8UC1);
+  cv::RNG(11).fill(speckle, cv::RNG::UNIFORM, 0, 40);
+  auto frame_at = [&](cv::Point tl) {
+    cv::Mat f(kFrame, CV_8UC3, cv::Scalar(40, 160, 40));
+    f(cv::Rect(tl, cv::Size(20, 30))).setTo(cv::Scalar(40, 40, 200));
+    cv::Mat s3;
+    cv::cvtColor(speckle, s3, cv::COLOR_GRAY2BGR);
+    cv::add(f, s3, f);
+    return f;
+  };
+  Dsst d(p);
+  d.init(frame_at({310, 215}), cv::Rect2d(300, 200, 40, 60));
+  double worst = 0;
+  for (int i = 1; i <= 12; ++i) {
+    const cv::Point tl(310 + 2 * i, 215 + i);
+    const DsstEstimate e = d.update(frame_at(tl));
+    worst = std::max(worst, std::hypot(e.box.x + e.box.width / 2 - (tl.x + 10), e.box.y + e.box.height / 2 - (tl.y + 15)));
+  }
+  return worst;
+}
+
+TEST(Dsst, GaussianColourScoreCentresATargetSmallerThanItsBox) {
+  EXPECT_LT(colour_alone_worst_centre_error(0.1), 4.0);  // within a cell
+  EXPECT_GT(colour_alone_worst_centre_error(0.0), 8.0);  // Staple's box: off by more than two cells
 }
 
 // A grey frame of the same size within a colour track (a camera switching to GRAY8) is tracked on the filter
@@ -171,6 +209,10 @@ TEST(Dsst, InterpolatedScaleSearchFindsEveryStep) {
   for (int samples : {0, 17, 19}) {
     DsstParams p;
     p.scale_samples = samples;
+    // Step 3 at 17 samples lies between two sampled scales, where a tenth of a pixel in the centre decides (the
+    // centres here are within 0.3 px of the truth either way): Staple's colour score, whose centres these steps
+    // were found at.
+    p.colour_centre_sigma = 0.0;
     for (int k = -3; k <= 3; ++k) {
       const double s = std::pow(p.scale_step, k);
       const auto est = run({{cv::Point2d(320, 240), 1.0}, {cv::Point2d(320, 240), s}}, p);
