@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
@@ -419,7 +420,7 @@ void Dsst::learn(const cv::Mat& frame) {
 
 // The translation step on a sample centred at centre: the filter's response (merged with the colour model's),
 // its peak refined to a fraction of a cell, the filter's PSR. The sample's DFTs stay in feats_f_ (learn()).
-Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre) {
+Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre, bool with_colour) {
   const int cell = p_.cell_size;
   const float lambda = static_cast<float>(p_.lambda);
 
@@ -475,7 +476,7 @@ Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre) {
     psr = std::max(0.0, (peak_value - mean) / std::max(sd, 1e-9));
   }
   double qx = px, qy = py;
-  if (colour_) {
+  if (colour_ && with_colour) {
     // Staple's merge; the position is the merged response's peak, the confidence (PSR) stays the filter's.
     colour_response(s);
     const float a = static_cast<float>(p_.colour_weight);
@@ -502,22 +503,31 @@ DsstEstimate Dsst::track(const cv::Mat& frame, bool wide_search) {
     // taken only if it is a sure frame itself (PSR >= wide_search_accept_psr), else the weak estimate stands.
     const cv::Size2d w = window_frame_ * scale_;
     const double off = p_.wide_search_offset;
-    cv::Point2d best_centre = pos_;
+    std::optional<cv::Point2d> best_centre;
     // A sure frame by this track's own standard too: a still cut to another scene gave windows at PSR 10+
     // (the sample clip's track runs at 36..60).
     double best_psr = std::max({p_.wide_search_psr, p_.wide_search_accept_psr, p_.wide_search_accept_share * good_psr_});
+    // The window's own sample is kept aside (learn() reads it when no other window is taken); the others are
+    // judged by the filter's PSR alone, so their colour scores are not computed.
+    std::swap(feats_f_, kept_feats_f_);
+    std::swap(patch_, kept_patch_);
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const cv::Point2d c(pos_.x + dx * off * w.width, pos_.y + dy * off * w.height);
         if ((dx == 0 && dy == 0) || c.x < 0 || c.y < 0 || c.x >= frame.cols || c.y >= frame.rows) continue;
-        const Translation n = translate(frame, c);
+        const Translation n = translate(frame, c, false);
         if (n.psr >= best_psr) {
           best_psr = n.psr;
           best_centre = c;
         }
       }
-    // Sampled again where it was found: its features (and patch) are the ones learnt from.
-    t = translate(frame, best_centre);
+    if (best_centre) {
+      // Sampled again where it was found, with its colour score: its features (and patch) are the ones learnt from.
+      t = translate(frame, *best_centre);
+    } else {
+      std::swap(feats_f_, kept_feats_f_);
+      std::swap(patch_, kept_patch_);
+    }
   }
   const Sample& s = t.sample;
   psr_ = t.psr;
