@@ -137,6 +137,10 @@ void Dsst::init(const cv::Mat& frame, const cv::Rect2d& box) {
   if (area > p_.max_model_area) model_factor_ = std::sqrt(p_.max_model_area / area);
   if (area < p_.min_model_area) model_factor_ = std::sqrt(p_.min_model_area / area);
   window_frame_ = cv::Size2d(box.width * (1.0 + p_.padding), box.height * (1.0 + p_.padding));
+  if (p_.min_window_side > 0) {
+    const double side = p_.min_window_side * (1.0 + p_.padding) * std::sqrt(box.area());
+    window_frame_ = cv::Size2d(std::max(window_frame_.width, side), std::max(window_frame_.height, side));
+  }
   cells_ = cv::Size(cv::getOptimalDFTSize(std::max(4, static_cast<int>(std::lround(window_frame_.width * model_factor_ / cell)))),
                     cv::getOptimalDFTSize(std::max(4, static_cast<int>(std::lround(window_frame_.height * model_factor_ / cell)))));
   sigma_cells_ = std::sqrt(area) * model_factor_ * p_.output_sigma_factor / cell;

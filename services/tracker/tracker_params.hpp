@@ -96,6 +96,12 @@ struct DsstParams {
   // is flat over every position that holds the target, so it could not pull the box back onto it, and the
   // filter slid onto the spray below; the Gaussian peaks on the target's colours (tracker README).
   double colour_centre_sigma = 0.1;
+  // Each side of the search window is at least min_window_side x (1 + padding) x sqrt(target area) (0: off, the
+  // paper's (1 + padding) x each side). A narrow target's window was 2 of its widths wide: uav123_group3_2's
+  // 15x64 px person, panning 18-26 px a frame, left it at frame 74; CSRT's window is square-ish. At 0.8 a
+  // target taller than 1.56x its width gets a wider window (group3_2: 3.3 widths), others keep the paper's.
+  // It needs the Gaussian colour score: with Staple's box the wider window lost dtb70_Surfing06 to the waves.
+  double min_window_side = 0.8;
   // A frame whose response is weak (PSR below wide_search_psr) is searched again in the 8 windows around, each
   // wide_search_offset of a window's side away; the best is taken if its PSR reaches wide_search_accept_psr
   // (a sure frame: redetect_psr's 10; from 7 it jumped onto the waves of dtb70_Surfing06, -0.14 AUC). A fast
@@ -126,6 +132,7 @@ struct DsstParams {
     v("reuse_detection_samples", reuse_detection_samples, "learn from the detection samples (false: sample again, as DSST)");
     v("colour_weight", colour_weight, 0.0, 1.0, "Staple: weight of the colour-histogram response (0: off; Staple 0.3)");
     v("colour_learning_rate", colour_learning_rate, 0.0, 1.0, "Staple: colour histograms' update rate (Staple 0.04)");
+    v("min_window_side", min_window_side, 0.0, 4.0, "window sides at least this x (1 + padding) x sqrt(target area) (0: the paper's (1 + padding) x each side)");
     v("colour_centre_sigma", colour_centre_sigma, 0.0, 4.0, "colour score: Gaussian weight of this fraction of the target's sides (0: Staple's target-sized box)");
     v("wide_search_psr", wide_search_psr, 0.0, 100.0, "PSR below this: the 8 windows around are searched too (0: off)");
     v("wide_search_offset", wide_search_offset, 0.05, 2.0, "wide search: the windows' offset, fraction of the window's side");

@@ -228,7 +228,11 @@ void UserTracker::track_frame(const cv::Mat& frame) {
   if (e.psr >= p_.redetect_psr) last_good_estimate_ = dsst_.estimate();
   // A weak frame of a track that knows the user's clothes is re-checked early (someone may be passing in front:
   // the filter, still learning above learn_psr, follows them off within a few frames).
-  const bool weak = e.psr < p_.weak_recheck_psr && !torso_colours_.empty() && p_.recheck_min_torso_match > 0;
+  // So is a box whose face is not wholly in view: a user walking out of the image's side left the box on the
+  // edge strip, where the filter then learnt the wall (PSR rising from 11 to 30 in a second).
+  const cv::Rect2d face = face_from_body(out_.box, track_body_);
+  const bool at_edge = (face & cv::Rect2d(0, 0, frame.cols, frame.rows)) != face;
+  const bool weak = (e.psr < p_.weak_recheck_psr || at_edge) && !torso_colours_.empty() && p_.recheck_min_torso_match > 0;
   ++frames_since_face_;
   if (p_.face_recheck_frames > 0 &&
       (frames_since_face_ >= p_.face_recheck_frames || (weak && frames_since_face_ >= p_.weak_recheck_frames)))
