@@ -100,13 +100,25 @@ std::vector<FaceDetection> FaceDetector::sorted_of(std::vector<cv::Rect> faces, 
 // any larger): the cascade's cost per searched pixel is about the same in every octave, so the tiles' pixels
 // are the budget. A tile overlaps its neighbours by the largest face it looks for, so every face of its
 // octave lies wholly in one tile.
+// The scan's finest resolution: the frame shrunk to max_search_pixels (at least face.downscale), then enlarged by
+// face.upscale for the smallest faces.
+namespace {
+double scan_shrink(cv::Size size, const FaceDetectorParams& f) {
+  return std::max({1.0, f.downscale, std::sqrt(size.area() / std::max(1.0, f.max_search_pixels))});
+}
+}  // namespace
+
+double FaceDetector::smallest_scan_face(cv::Size frame_size) const {
+  return p_.face.min_face_px * scan_shrink(frame_size, p_.face) / std::max(1.0, p_.face.upscale);
+}
+
 void FaceDetector::plan_scan(cv::Size size, Scan& scan) const {
   std::vector<ScanJob>& jobs = scan.jobs;
   jobs.clear();
   scan.planned_for = size;
   scan.next = 0;
   const int min_px = p_.face.min_face_px;
-  const double k0 = std::max({1.0, p_.face.downscale, std::sqrt(size.area() / std::max(1.0, p_.face.max_search_pixels))});
+  const double k0 = scan_shrink(size, p_.face);
   std::vector<ScanJob> octave_jobs;
   for (double k = k0;; k *= 2) {
     const cv::Size img(static_cast<int>(std::round(size.width / k)), static_cast<int>(std::round(size.height / k)));

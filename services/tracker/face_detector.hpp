@@ -63,6 +63,8 @@ class FaceDetector {
   void restart_scan() { scan_.next = 0; window_.next = 0; }
   //! Tiles in the scan of a frame of this size, and the pixels the last scan_step or window_step searched.
   int scan_tiles(cv::Size frame_size);
+  //! The smallest face (frame pixels) the whole-frame scan of a frame of this size looks for.
+  double smallest_scan_face(cv::Size frame_size) const;
   double last_step_pixels() const { return last_step_pixels_; }
 
  private:

@@ -145,7 +145,13 @@ bool UserTracker::search(const cv::Mat& frame) {
   out_.confidence = 0.0;
   const bool full = out_.status != TrackStatus::kLost || searches_++ % p_.search_full_stride == 0;
   std::vector<FaceDetection> faces;
-  if (full) {
+  // A LOST user whose face the scan cannot find even grown by lost_scan_face_growth (a far person): not scanned for.
+  const bool findable = out_.status != TrackStatus::kLost || p_.lost_scan_face_growth <= 0 ||
+                        p_.lost_scan_face_growth * last_good_box_.width / track_body_.width_in_faces >=
+                            faces_.smallest_scan_face(frame.size());
+  if (full && !findable) {
+    ++scans_skipped_;
+  } else if (full) {
     faces = faces_.scan_step_all(frame);
   } else {
     const cv::Rect2d& b = last_good_box_;

@@ -71,6 +71,8 @@ class UserTracker {
   int64_t other_faces() const { return other_faces_; }
   //! Re-checks that found neither the user's face nor their clothes where the box puts them: the track dropped.
   int64_t off_user() const { return off_user_; }
+  //! LOST frames whose whole-frame scan step was left out: the user's face too small for it (lost_scan_face_growth).
+  int64_t scans_skipped() const { return scans_skipped_; }
   //! The ratios of the current track's body box to its face (the preset, or fitted when it started on a face).
   const BodyProportions& track_body() const { return track_body_; }
 
@@ -112,6 +114,7 @@ class UserTracker {
   int64_t searches_ = 0;       //!< face searches since the last track, for the full/local alternation
   int64_t other_faces_ = 0;
   int64_t off_user_ = 0;
+  int64_t scans_skipped_ = 0;
   std::vector<float> torso_colours_;  //!< the user's torso chromaticity (tracks from a face; empty: no gate)
   std::optional<double> recheck_psr_;  //!< track() found a re-check due (this frame's PSR): finish() does it
   struct RecheckFace {

@@ -179,6 +179,31 @@ TEST(UserTracker, PictureDropoutIsLostThenRefoundByTheLastGoodFilter) {
   EXPECT_GT(iou(out.box, truth53), 0.6) << out.box;
 }
 
+// While LOST the whole-frame scan is left out for a user whose face, grown by lost_scan_face_growth, is below
+// the scan's smallest face (a far person seen from a drone); the filter's re-detection still re-finds them.
+// The sample's 38 px wide man has a 13.8 px face (the preset's 2.75 face widths): grown twice, 27.6 px. The
+// scan of a 640x360 frame looks for faces from 10 px (20 px, enlarged twice); with min_face_px 60, from 30.
+TEST(UserTracker, ALostUserTooSmallForTheScanIsNotScannedFor) {
+  const auto frames = load(kSample);
+  auto lost_then_back = [&](int min_face_px) {
+    TrackerParams p;
+    p.face.min_face_px = min_face_px;
+    UserTracker t(p);
+    t.set_box(kSampleInit);
+    for (int i = 0; i < 15; ++i) t.process(frames[static_cast<size_t>(i)].image);
+    const cv::Mat black(frames[0].image.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+    for (int k = 1; k <= p.lost_frames + 6; ++k) t.process(black);
+    EXPECT_EQ(t.last().status, TrackStatus::kLost);
+    TrackOutput out;
+    for (int k = 1; k <= p.redetect_frames; ++k) out = t.process(frames[static_cast<size_t>(14 + k)].image);
+    EXPECT_EQ(out.status, TrackStatus::kTracking) << "min_face_px " << min_face_px;
+    return t.scans_skipped();
+  };
+  // 6 LOST black frames and the first frame back search: 7 searches, 4 of them scan steps (search_full_stride 2)
+  EXPECT_EQ(lost_then_back(60), 4);
+  EXPECT_EQ(lost_then_back(TrackerParams{}.face.min_face_px), 0);
+}
+
 TEST(UserTracker, SameFramesGiveIdenticalOutputs) {
   const auto frames = load(kSample);
   UserTracker a{TrackerParams{}}, b{TrackerParams{}};
