@@ -59,21 +59,23 @@ TEST(Fhog, MirroredEdgeUsesTheOppositeSignedBinAndTheSameUnsignedOne) {
 // Staple's score (the mean over a target-sized box) peaks where the box holds the block, one place here; the
 // default Gaussian score is flat inside a uniform block wider than it (the filter places the box there) and
 // drifts up to 9 px alone.
+// A red block on a green field, grey speckle (seed) over both: FHOG sees the speckle, the colour model the block.
+cv::Mat block_on_field(const cv::Rect& block, int seed) {
+  cv::Mat speckle(kFrame, CV_8UC1);
+  cv::RNG(static_cast<uint64_t>(seed)).fill(speckle, cv::RNG::UNIFORM, 0, 40);
+  cv::Mat f(kFrame, CV_8UC3, cv::Scalar(40, 160, 40));
+  f(block).setTo(cv::Scalar(40, 40, 200));
+  cv::Mat s3;
+  cv::cvtColor(speckle, s3, cv::COLOR_GRAY2BGR);
+  cv::add(f, s3, f);
+  return f;
+}
+
 TEST(Dsst, ColourModelAloneFollowsAColouredBlock) {
   DsstParams p;
   p.colour_weight = 1.0;
   p.colour_centre_sigma = 0.0;
-  cv::Mat speckle(kFrame, CV_8UC1);
-  cv::RNG rng(7);
-  rng.fill(speckle, cv::RNG::UNIFORM, 0, 40);
-  auto frame_at = [&](cv::Point2d tl) {
-    cv::Mat f(kFrame, CV_8UC3, cv::Scalar(40, 160, 40));
-    f(cv::Rect(cv::Point(static_cast<int>(tl.x), static_cast<int>(tl.y)), cv::Size(40, 60))).setTo(cv::Scalar(40, 40, 200));
-    cv::Mat s3;
-    cv::cvtColor(speckle, s3, cv::COLOR_GRAY2BGR);
-    cv::add(f, s3, f);
-    return f;
-  };
+  auto frame_at = [](cv::Point2d tl) { return block_on_field(cv::Rect(cv::Point(static_cast<int>(tl.x), static_cast<int>(tl.y)), cv::Size(40, 60)), 7); };
   Dsst d(p);
   d.init(frame_at({300, 200}), cv::Rect2d(300, 200, 40, 60));
   for (int i = 1; i <= 10; ++i) {
@@ -92,16 +94,7 @@ double colour_alone_worst_centre_error(double centre_sigma) {
   DsstParams p;
   p.colour_weight = 1.0;
   p.colour_centre_sigma = centre_sigma;
-  cv::Mat speckle(kFrame, CV_8UC1);
-  cv::RNG(11).fill(speckle, cv::RNG::UNIFORM, 0, 40);
-  auto frame_at = [&](cv::Point tl) {
-    cv::Mat f(kFrame, CV_8UC3, cv::Scalar(40, 160, 40));
-    f(cv::Rect(tl, cv::Size(20, 30))).setTo(cv::Scalar(40, 40, 200));
-    cv::Mat s3;
-    cv::cvtColor(speckle, s3, cv::COLOR_GRAY2BGR);
-    cv::add(f, s3, f);
-    return f;
-  };
+  auto frame_at = [](cv::Point tl) { return block_on_field(cv::Rect(tl, cv::Size(20, 30)), 11); };
   Dsst d(p);
   d.init(frame_at({310, 215}), cv::Rect2d(300, 200, 40, 60));
   double worst = 0;
