@@ -422,14 +422,10 @@ void Dsst::learn(const cv::Mat& frame) {
   have_detection_ = false;
 }
 
-// The translation step on a sample centred at centre: the filter's response (merged with the colour model's),
-// its peak refined to a fraction of a cell, the filter's PSR. The sample's DFTs stay in feats_f_ (learn()).
-Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre, bool with_colour) {
-  const int cell = p_.cell_size;
+// The filter's response to the sample whose DFTs are in feats_f_, y = IDFT(Σ_l A_l Z_l / (B + λ)), into resp_:
+// its peak and PSR.
+Dsst::Response Dsst::filter_response() {
   const float lambda = static_cast<float>(p_.lambda);
-
-  // Translation: y = IDFT(Σ_l A_l Z_l / (B + λ)).
-  const Sample s = translation_features(frame, centre, scale_);
   const int n = cells_.area();
   resp_f_.create(cells_, CV_32FC2);
   resp_f_.setTo(0);
@@ -454,9 +450,6 @@ Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre, bool
   double peak_value = 0;
   cv::minMaxLoc(resp_, nullptr, &peak_value, nullptr, &peak);
   const int W = cells_.width, H = cells_.height;
-  auto at = [&](int y, int x) { return static_cast<double>(resp_.at<float>((y + H) % H, (x + W) % W)); };
-  const double px = peak.x + peak_offset(at(peak.y, peak.x - 1), peak_value, at(peak.y, peak.x + 1));
-  const double py = peak.y + peak_offset(at(peak.y - 1, peak.x), peak_value, at(peak.y + 1, peak.x));
 
   // PSR = (peak - mean) / std over the response outside a square around the peak (wrapping).
   double sum = 0, sum2 = 0;
@@ -479,8 +472,23 @@ Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre, bool
     const double sd = std::sqrt(std::max(sum2 / count - mean * mean, 0.0));
     psr = std::max(0.0, (peak_value - mean) / std::max(sd, 1e-9));
   }
+  return Response{peak, peak_value, psr};
+}
+
+// The translation step on a sample centred at centre: the filter's response (merged with the colour model's),
+// its peak refined to a fraction of a cell, the filter's PSR. The sample's DFTs stay in feats_f_ (learn()).
+Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre) {
+  const int cell = p_.cell_size;
+  const Sample s = translation_features(frame, centre, scale_);
+  const Response r = filter_response();
+  const cv::Point peak = r.peak;
+  const double peak_value = r.peak_value;
+  const int W = cells_.width, H = cells_.height;
+  auto at = [&](int y, int x) { return static_cast<double>(resp_.at<float>((y + H) % H, (x + W) % W)); };
+  const double px = peak.x + peak_offset(at(peak.y, peak.x - 1), peak_value, at(peak.y, peak.x + 1));
+  const double py = peak.y + peak_offset(at(peak.y - 1, peak.x), peak_value, at(peak.y + 1, peak.x));
   double qx = px, qy = py;
-  if (colour_ && with_colour) {
+  if (colour_) {
     // Staple's merge; the position is the merged response's peak, the confidence (PSR) stays the filter's.
     colour_response(s);
     const float a = static_cast<float>(p_.colour_weight);
@@ -492,7 +500,7 @@ Dsst::Translation Dsst::translate(const cv::Mat& frame, cv::Point2d centre, bool
     qx = m.x + peak_offset(mat(m.y, m.x - 1), mv, mat(m.y, m.x + 1));
     qy = m.y + peak_offset(mat(m.y - 1, m.x), mv, mat(m.y + 1, m.x));
   }
-  return Translation{s, s.centre.x + (qx + 0.5) * cell * s.frame_per_model.x, s.centre.y + (qy + 0.5) * cell * s.frame_per_model.y, psr};
+  return Translation{s, s.centre.x + (qx + 0.5) * cell * s.frame_per_model.x, s.centre.y + (qy + 0.5) * cell * s.frame_per_model.y, r.psr};
 }
 
 DsstEstimate Dsst::track(const cv::Mat& frame, bool wide_search) {
@@ -511,17 +519,36 @@ DsstEstimate Dsst::track(const cv::Mat& frame, bool wide_search) {
     // A sure frame by this track's own standard too: a still cut to another scene gave windows at PSR 10+
     // (the sample clip's track runs at 36..60).
     double best_psr = std::max({p_.wide_search_psr, p_.wide_search_accept_psr, p_.wide_search_accept_share * good_psr_});
-    // The window's own sample is kept aside (learn() reads it when no other window is taken); the others are
-    // judged by the filter's PSR alone, so their colour scores are not computed.
+    // The window's own sample is kept aside (learn() reads it when no other window is taken). The 8 windows are
+    // cut from one sample of the area they cover (its features computed once: 4 windows' area, not 8), each
+    // offset by a whole number of cells, and judged by the filter's PSR alone (no colour score).
     std::swap(feats_f_, kept_feats_f_);
-    std::swap(patch_, kept_patch_);
+    const int cell = p_.cell_size;
+    const int ox = std::max(1, static_cast<int>(std::lround(off * cells_.width)));
+    const int oy = std::max(1, static_cast<int>(std::lround(off * cells_.height)));
+    const cv::Size around(cells_.width + 2 * ox, cells_.height + 2 * oy);
+    const auto [origin, fpm] = crop_resized(frame, pos_, cv::Size2d(w.width * around.width / cells_.width, w.height * around.height / cells_.height),
+                                            around * cell, crop_, shrunk_, around_patch_);
+    around_feats_.resize(kTranslationChannels);
+    fhog_.compute(around_patch_, cell, around_feats_, 0);
+    if (around_patch_.channels() == 3) cv::cvtColor(around_patch_, grey_, cv::COLOR_BGR2GRAY);
+    cv::resize(around_patch_.channels() == 3 ? grey_ : around_patch_, grey_cells_, around, 0, 0, cv::INTER_AREA);
+    grey_cells_.convertTo(around_feats_[kGreyChannel], CV_32F, 1.0 / 255.0, -0.5);
+    feats_.resize(kTranslationChannels);
+    feats_f_.resize(kTranslationChannels);
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
-        const cv::Point2d c(pos_.x + dx * off * w.width, pos_.y + dy * off * w.height);
+        const cv::Rect window((1 + dx) * ox, (1 + dy) * oy, cells_.width, cells_.height);
+        const cv::Point2d c(origin.x + (window.x + cells_.width / 2.0) * cell * fpm.x,
+                            origin.y + (window.y + cells_.height / 2.0) * cell * fpm.y);
         if ((dx == 0 && dy == 0) || c.x < 0 || c.y < 0 || c.x >= frame.cols || c.y >= frame.rows) continue;
-        const Translation n = translate(frame, c, false);
-        if (n.psr >= best_psr) {
-          best_psr = n.psr;
+        for (int l = 0; l < kTranslationChannels; ++l) {
+          cv::multiply(around_feats_[static_cast<size_t>(l)](window), cos_window_, feats_[static_cast<size_t>(l)]);
+          cv::dft(feats_[static_cast<size_t>(l)], feats_f_[static_cast<size_t>(l)], cv::DFT_COMPLEX_OUTPUT);
+        }
+        const double psr = filter_response().psr;
+        if (psr >= best_psr) {
+          best_psr = psr;
           best_centre = c;
         }
       }
@@ -530,7 +557,6 @@ DsstEstimate Dsst::track(const cv::Mat& frame, bool wide_search) {
       t = translate(frame, *best_centre);
     } else {
       std::swap(feats_f_, kept_feats_f_);
-      std::swap(patch_, kept_patch_);
     }
   }
   const Sample& s = t.sample;

@@ -62,8 +62,13 @@ class Dsst {
     double x, y;  //!< the estimate, frame pixels
     double psr;
   };
-  // with_colour false: the filter's response alone (the position unmerged; the PSR is the filter's either way).
-  Translation translate(const cv::Mat& frame, cv::Point2d centre, bool with_colour = true);
+  struct Response {
+    cv::Point peak;  //!< cell of the response's maximum
+    double peak_value;
+    double psr;
+  };
+  Translation translate(const cv::Mat& frame, cv::Point2d centre);
+  Response filter_response();
   Sample translation_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void scale_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void learn_translation(const Sample& s, bool first);
@@ -122,8 +127,9 @@ class Dsst {
   cv::Mat crop_, shrunk_, patch_, grey_, grey_cells_, scale_inter_, scale_patch_;
   std::vector<cv::Mat> feats_;      // 32 channels, CV_32F
   std::vector<cv::Mat> feats_f_;    // their DFTs, CV_32FC2
-  std::vector<cv::Mat> kept_feats_f_;  // the wide search: the window's own sample's DFTs and patch, kept aside
-  cv::Mat kept_patch_;
+  std::vector<cv::Mat> kept_feats_f_;  // the wide search: the window's own sample's DFTs, kept aside
+  cv::Mat around_patch_;               // the wide search: the sample of the 8 windows' area, and its features
+  std::vector<cv::Mat> around_feats_;
   std::vector<cv::Mat> scale_fhog_;
   cv::Mat scale_x_, scale_x_f_;     // d x S real, d x S complex
   cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_, scale_interp_f_;
