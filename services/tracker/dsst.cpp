@@ -289,18 +289,26 @@ Dsst::Sample Dsst::translation_features(const cv::Mat& frame, cv::Point2d pos, d
   const cv::Size model(cells_.width * cell, cells_.height * cell);
   const auto [origin, fpm] = crop_resized(frame, pos, window_frame_ * scale, model, crop_, shrunk_, patch_);
 
-  feats_.resize(kTranslationChannels);
-  fhog_.compute(patch_, cell, feats_, 0);
-  if (patch_.channels() == 3) cv::cvtColor(patch_, grey_, cv::COLOR_BGR2GRAY);
-  cv::resize(patch_.channels() == 3 ? grey_ : patch_, grey_cells_, cells_, 0, 0, cv::INTER_AREA);
-  grey_cells_.convertTo(feats_[kGreyChannel], CV_32F, 1.0 / 255.0, -0.5);
+  patch_features(patch_, cells_, feats_);
+  window_spectra(feats_, cv::Rect(cv::Point(), cells_));
+  return Sample{origin, fpm};
+}
 
+void Dsst::patch_features(const cv::Mat& patch, cv::Size cells, std::vector<cv::Mat>& out) {
+  out.resize(kTranslationChannels);
+  fhog_.compute(patch, p_.cell_size, out, 0);
+  if (patch.channels() == 3) cv::cvtColor(patch, grey_, cv::COLOR_BGR2GRAY);
+  cv::resize(patch.channels() == 3 ? grey_ : patch, grey_cells_, cells, 0, 0, cv::INTER_AREA);
+  grey_cells_.convertTo(out[kGreyChannel], CV_32F, 1.0 / 255.0, -0.5);
+}
+
+void Dsst::window_spectra(const std::vector<cv::Mat>& features, const cv::Rect& window) {
+  feats_.resize(kTranslationChannels);
   feats_f_.resize(kTranslationChannels);
   for (int l = 0; l < kTranslationChannels; ++l) {
-    cv::multiply(feats_[static_cast<size_t>(l)], cos_window_, feats_[static_cast<size_t>(l)]);
+    cv::multiply(features[static_cast<size_t>(l)](window), cos_window_, feats_[static_cast<size_t>(l)]);
     cv::dft(feats_[static_cast<size_t>(l)], feats_f_[static_cast<size_t>(l)], cv::DFT_COMPLEX_OUTPUT);
   }
-  return Sample{origin, fpm};
 }
 
 void Dsst::gaussian_label(cv::Point2d centre_cells) {
@@ -529,23 +537,14 @@ DsstEstimate Dsst::track(const cv::Mat& frame, bool wide_search) {
     const cv::Size around(cells_.width + 2 * ox, cells_.height + 2 * oy);
     const auto [origin, fpm] = crop_resized(frame, pos_, cv::Size2d(w.width * around.width / cells_.width, w.height * around.height / cells_.height),
                                             around * cell, crop_, shrunk_, around_patch_);
-    around_feats_.resize(kTranslationChannels);
-    fhog_.compute(around_patch_, cell, around_feats_, 0);
-    if (around_patch_.channels() == 3) cv::cvtColor(around_patch_, grey_, cv::COLOR_BGR2GRAY);
-    cv::resize(around_patch_.channels() == 3 ? grey_ : around_patch_, grey_cells_, around, 0, 0, cv::INTER_AREA);
-    grey_cells_.convertTo(around_feats_[kGreyChannel], CV_32F, 1.0 / 255.0, -0.5);
-    feats_.resize(kTranslationChannels);
-    feats_f_.resize(kTranslationChannels);
+    patch_features(around_patch_, around, around_feats_);
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const cv::Rect window((1 + dx) * ox, (1 + dy) * oy, cells_.width, cells_.height);
         const cv::Point2d c(origin.x + (window.x + cells_.width / 2.0) * cell * fpm.x,
                             origin.y + (window.y + cells_.height / 2.0) * cell * fpm.y);
         if ((dx == 0 && dy == 0) || c.x < 0 || c.y < 0 || c.x >= frame.cols || c.y >= frame.rows) continue;
-        for (int l = 0; l < kTranslationChannels; ++l) {
-          cv::multiply(around_feats_[static_cast<size_t>(l)](window), cos_window_, feats_[static_cast<size_t>(l)]);
-          cv::dft(feats_[static_cast<size_t>(l)], feats_f_[static_cast<size_t>(l)], cv::DFT_COMPLEX_OUTPUT);
-        }
+        window_spectra(around_feats_, window);
         const double psr = filter_response().psr;
         if (psr >= best_psr) {
           best_psr = psr;

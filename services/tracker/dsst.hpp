@@ -70,6 +70,10 @@ class Dsst {
   Translation translate(const cv::Mat& frame, cv::Point2d centre);
   Response filter_response();
   Sample translation_features(const cv::Mat& frame, cv::Point2d pos, double scale);
+  // The 32 translation channels (FHOG + grey) of a model-resolution patch of cells (at cell_size each) into out.
+  void patch_features(const cv::Mat& patch, cv::Size cells, std::vector<cv::Mat>& out);
+  // The cosine-windowed DFTs of one window (cells_ in size) of features into feats_f_ (feats_: the windowed maps).
+  void window_spectra(const std::vector<cv::Mat>& features, const cv::Rect& window);
   void scale_features(const cv::Mat& frame, cv::Point2d pos, double scale);
   void learn_translation(const Sample& s, bool first);
   void learn_scale(bool first, int label_centre);

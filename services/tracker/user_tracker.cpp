@@ -147,8 +147,7 @@ bool UserTracker::search(const cv::Mat& frame) {
   std::vector<FaceDetection> faces;
   // A LOST user whose face the scan cannot find even grown by lost_scan_face_growth (a far person): not scanned for.
   const bool findable = out_.status != TrackStatus::kLost || p_.lost_scan_face_growth <= 0 ||
-                        p_.lost_scan_face_growth * last_good_box_.width / track_body_.width_in_faces >=
-                            faces_.smallest_scan_face(frame.size());
+                        p_.lost_scan_face_growth * last_face_width() >= faces_.smallest_scan_face(frame.size());
   if (full && !findable) {
     ++scans_skipped_;
   } else if (full) {
@@ -188,7 +187,7 @@ bool UserTracker::search(const cv::Mat& frame) {
     // second later, corrects if the user did move away.
     if (known) {
       cv::Rect2d user_face = face.face;
-      const double last_face = last_good_box_.width / track_body_.width_in_faces;
+      const double last_face = last_face_width();
       if (user_face.width < kMinRefoundFaceShare * last_face) {
         const cv::Point2d c = (user_face.tl() + user_face.br()) * 0.5;
         user_face = cv::Rect2d(c.x - last_face / 2, c.y - last_face / 2, last_face, last_face);

@@ -93,6 +93,8 @@ class UserTracker {
   FaceCheck missed_face(const cv::Mat& frame, FaceCheck users);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
+  //! The user's face width as the last good box puts it (its width over the track's face widths).
+  double last_face_width() const { return last_good_box_.width / track_body_.width_in_faces; }
 
   TrackerParams p_;
   FaceDetector faces_;
