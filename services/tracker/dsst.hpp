@@ -75,6 +75,7 @@ class Dsst {
   // The cosine-windowed DFTs of one window (cells_ in size) of features into feats_f_ (feats_: the windowed maps).
   void window_spectra(const std::vector<cv::Mat>& features, const cv::Rect& window);
   void scale_features(const cv::Mat& frame, cv::Point2d pos, double scale);
+  void scale_spectrum();  //!< scale_x_ into scale_x_f_
   void learn_translation(const Sample& s, bool first);
   void learn_scale(bool first, int label_centre);
   void gaussian_label(cv::Point2d centre_cells);
@@ -124,8 +125,9 @@ class Dsst {
   bool have_detection_ = false;
   Sample detection_sample_;
   int detection_scale_index_ = 0;
-  cv::Mat scale_num_;          // d x S, CV_32FC2
-  cv::Mat scale_den_;          // 1 x S, CV_32F
+  cv::Mat scale_num_;          // (S/2 + 1) x d, CV_32FC2: frequency k of every feature (scale_spectrum)
+  cv::Mat scale_den_;          // 1 x (S/2 + 1), CV_32F
+  std::vector<float> scale_twiddles_;  // e^(-2 pi i k s / S), k = 0..S/2, s = 0..S-1: (cos, sin) pairs
 
   // Buffers reused every frame.
   cv::Mat crop_, shrunk_, patch_, grey_, grey_cells_, scale_inter_, scale_patch_;
@@ -135,7 +137,8 @@ class Dsst {
   cv::Mat around_patch_;               // the wide search: the sample of the 8 windows' area, and its features
   std::vector<cv::Mat> around_feats_;
   std::vector<cv::Mat> scale_fhog_;
-  cv::Mat scale_x_, scale_x_f_;     // d x S real, d x S complex
+  cv::Mat scale_x_, scale_x_f_;     // S x d real (a sample a row), (S/2 + 1) x d complex
+  std::vector<float> dft_re_, dft_im_;
   cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_, scale_interp_f_;
   // Colour model (colour_weight > 0 and colour frames): 32x32x32-bin BGR histograms, each summing to 1.
   bool colour_ = false;
