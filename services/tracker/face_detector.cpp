@@ -46,7 +46,7 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv
 }
 std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) { return first(scan_step_all(frame)); }
 
-std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double min_face) {
+std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double min_face, double max_face) {
   if (frame.empty()) return {};
   grey_of(frame);
   // The budget: at least face.downscale, and shrunk to at most max_search_pixels.
@@ -60,11 +60,15 @@ std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double
   // No histogram equalisation: on messi5.jpg it turns the shirt into a face at min_neighbors 5.
   std::vector<cv::Rect> faces;
   const int min_px = p_.face.min_face_px;
-  cascade_.detectMultiScale(*img, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px));
+  const int bound_px = max_face > 0 ? static_cast<int>(std::ceil(max_face / k)) : 0;  // in img; 0: none
+  if (bound_px == 0 || bound_px >= min_px)
+    cascade_.detectMultiScale(*img, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+                              cv::Size(bound_px, bound_px));
   std::vector<FaceDetection> out = sorted_of(faces, k, cv::Point(), frame);
   // Faces below min_face_px, in an enlarged copy, when that copy is within the budget (a small window).
   const double u = p_.face.upscale;
-  const int max_px = static_cast<int>(std::ceil(kUpscaleSizeOverlap * min_px * u));
+  int max_px = static_cast<int>(std::ceil(kUpscaleSizeOverlap * min_px * u));
+  if (max_face > 0) max_px = std::min(max_px, static_cast<int>(std::ceil(max_face * u)));
   // The smallest face wanted, in the enlarged copy (the cascade's cost is mostly its smallest windows).
   const int from_px = std::max(min_px, static_cast<int>(std::floor(min_face * u)));
   if (u > 1.0 && k <= 1.0 && from_px <= max_px && static_cast<double>(grey_.total()) * u * u <= p_.face.max_search_pixels) {
@@ -184,19 +188,21 @@ std::vector<FaceDetection> FaceDetector::scan_step_all(const cv::Mat& frame) {
   return step(frame, scan_);
 }
 
-std::vector<FaceDetection> FaceDetector::window_step_all(const cv::Mat& frame, const cv::Rect& roi) {
+std::vector<FaceDetection> FaceDetector::window_step_all(const cv::Mat& frame, const cv::Rect& roi, double max_face) {
   last_step_pixels_ = 0;
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
   if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};
-  // What detect_all searches in r: the window (shrunk to max_search_pixels) and its enlarged copy.
+  // What detect_all searches in r: the window (shrunk to max_search_pixels; not when max_face is below its
+  // smallest face) and its enlarged copy.
   const double area = static_cast<double>(r.area());
   const double k = std::max({1.0, p_.face.downscale, std::sqrt(area / std::max(1.0, p_.face.max_search_pixels))});
   const double u = p_.face.upscale;
   const bool enlarged = u > 1.0 && k <= 1.0 && area * u * u <= p_.face.max_search_pixels;
-  const double pixels = area / (k * k) + (enlarged ? area * u * u : 0.0);
+  const bool as_is = max_face <= 0 || std::ceil(max_face / k) >= p_.face.min_face_px;
+  const double pixels = (as_is ? area / (k * k) : 0.0) + (enlarged ? area * u * u : 0.0);
   if (p_.face.scan_slice_pixels <= 0 || pixels <= p_.face.scan_slice_pixels) {
     last_step_pixels_ = pixels;
-    return detect_all(frame, r);
+    return detect_all(frame, r, 0, max_face);
   }
   // Over the budget (a large box, or a small one's enlarged copy: person12_1's 70x176 px window searched
   // enlarged too cost 35 ms a frame at 1280x720, the whole-frame scan's steps 20): scanned over calls.
@@ -204,10 +210,10 @@ std::vector<FaceDetection> FaceDetector::window_step_all(const cv::Mat& frame, c
     window_for_ = r;
     window_.planned_for = cv::Size();
   }
-  return in_frame(step(frame(r), window_), r, frame);
+  return in_frame(step(frame(r), window_, max_face), r, frame);
 }
 
-std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) {
+std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan, double max_face) {
   if (frame.size() != scan.planned_for) plan_scan(frame.size(), scan);
   if (scan.jobs.empty()) return {};
   grey_of(frame);
@@ -216,6 +222,17 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) 
   std::vector<cv::Rect> faces;
   while (true) {
     const ScanJob& job = scan.jobs[scan.next];
+    // The largest face wanted in the job's image (0: any): a job whose smallest face is larger is passed over.
+    int max_px = job.max_face;
+    if (max_face > 0) {
+      const int bound = static_cast<int>(std::ceil(max_face / job.shrink));
+      if (bound < min_px) {
+        scan.next = (scan.next + 1) % scan.jobs.size();
+        if (scan.next == 0) break;
+        continue;
+      }
+      max_px = max_px > 0 ? std::min(max_px, bound) : bound;
+    }
     if (last_step_pixels_ > 0 && last_step_pixels_ + job.tile.area() > p_.face.scan_slice_pixels) break;
     if (job.shrink != shrunk_for) {
       if (job.shrink != 1.0)
@@ -230,8 +247,7 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan) 
     scan.next = (scan.next + 1) % scan.jobs.size();
     faces.clear();
     cascade_.detectMultiScale(small_(job.tile & cv::Rect(cv::Point(), small_.size())), faces, p_.face.scale_factor,
-                              p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
-                              job.max_face > 0 ? cv::Size(job.max_face, job.max_face) : cv::Size());
+                              p_.face.min_neighbors, 0, cv::Size(min_px, min_px), cv::Size(max_px, max_px));
     if (!faces.empty()) return sorted_of(faces, job.shrink, job.tile.tl(), frame);
     if (scan.next == 0) break;  // the scan is complete: the next frame starts it again
   }
@@ -253,10 +269,11 @@ std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const c
   return all.front();
 }
 
-std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face) {
+std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face,
+                                                    double max_face) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
   if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return {};
-  return in_frame(detect_all(frame(r), min_face), r, frame);
+  return in_frame(detect_all(frame(r), min_face, max_face), r, frame);
 }
 
 void FaceDetector::grey_of(const cv::Mat& img) {

@@ -40,8 +40,9 @@ class FaceDetector {
   std::optional<FaceDetection> detect(const cv::Mat& frame, const cv::Rect& roi, double min_face = 0);
   // Every face found, the largest first (ties by position: the order does not depend on the cascade's):
   // a caller that refuses the largest (a face on a poster) can take the next.
-  std::vector<FaceDetection> detect_all(const cv::Mat& frame, double min_face = 0);
-  std::vector<FaceDetection> detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face = 0);
+  // max_face (frame pixels, 0: none): nor any larger face (the searches whose smallest face is larger do not run).
+  std::vector<FaceDetection> detect_all(const cv::Mat& frame, double min_face = 0, double max_face = 0);
+  std::vector<FaceDetection> detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face = 0, double max_face = 0);
   // The face re-check's search of roi for a face of about expected px (taken from min_share of it to twice
   // it): detect(frame, roi, min_share * expected), or, for an expected face below face.recheck_small_face_px,
   // the window enlarged so that it is face.recheck_enlarged_face_px (within max_search_pixels).
@@ -58,8 +59,8 @@ class FaceDetector {
   // A search of roi (LOST: around the last box) within the same budget: detect_all(frame, roi) when the window
   // and its enlarged copy (face.upscale) are at most scan_slice_pixels together; else the window is scanned
   // like a frame of its own (octaves, tiles), one budget a call, going on where the last call for the same roi
-  // stopped (a new roi starts over). Boxes in frame pixels.
-  std::vector<FaceDetection> window_step_all(const cv::Mat& frame, const cv::Rect& roi);
+  // stopped (a new roi starts over). Boxes in frame pixels. max_face (frame pixels, 0: none): no larger face.
+  std::vector<FaceDetection> window_step_all(const cv::Mat& frame, const cv::Rect& roi, double max_face = 0);
   void restart_scan() { scan_.next = 0; window_.next = 0; }
   //! Tiles in the scan of a frame of this size, and the pixels the last scan_step or window_step searched.
   int scan_tiles(cv::Size frame_size);
@@ -79,8 +80,9 @@ class FaceDetector {
     size_t next = 0;
   };
   void plan_scan(cv::Size frame_size, Scan& scan) const;
-  //! The next jobs of scan on img (the frame or a window of it) within the budget; boxes in img's pixels.
-  std::vector<FaceDetection> step(const cv::Mat& img, Scan& scan);
+  //! The next jobs of scan on img (the frame or a window of it) within the budget, faces up to max_face (img
+  //! pixels, 0: any); boxes in img's pixels.
+  std::vector<FaceDetection> step(const cv::Mat& img, Scan& scan, double max_face = 0);
   std::vector<FaceDetection> sorted_of(std::vector<cv::Rect> faces, double k, cv::Point offset, const cv::Mat& frame) const;
   void grey_of(const cv::Mat& img);  //!< img (BGR or grey) into grey_
   //! The faces of min_px .. max_px in grey_ enlarged u times (into small_), boxes in grey_'s pixels, largest first.

@@ -156,7 +156,11 @@ bool UserTracker::search(const cv::Mat& frame) {
     const cv::Rect2d& b = last_good_box_;
     const double g = p_.search_local_scale;
     const cv::Point2d c = (b.tl() + b.br()) * 0.5;
-    faces = faces_.window_step_all(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)));
+    // Around the last box, faces up to the last one grown by lost_scan_face_growth (the re-check's scale gate: a
+    // larger one is not the user's; the whole-frame scan, which runs for such a size, looks for any).
+    const double max_face = p_.lost_scan_face_growth > 0 ? p_.lost_scan_face_growth * last_face_width() : 0.0;
+    faces = faces_.window_step_all(frame, cv::Rect(cv::Rect2d(c.x - g * b.width / 2, c.y - g * b.height / 2, g * b.width, g * b.height)),
+                                   max_face);
   }
   // Each face's body box is checked against the image before a track starts on it (body_fit.hpp), the
   // largest face first: a face with no body in view under it (on a poster, at the bottom edge) is refused

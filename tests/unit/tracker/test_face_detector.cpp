@@ -121,6 +121,37 @@ TEST(FaceDetector, WindowStepsStayWithinTheBudget) {
   EXPECT_DOUBLE_EQ(steps.last_step_pixels(), 90.0 * 90.0 * 5);
 }
 
+// The LOST search around the last box takes no face larger than the user's last one grown by the scale gate
+// (max_face): Messi's 40 px face is found up to 40 px and not below; a bound under the cascade's 20 px window
+// leaves the window's search at its size out (only the enlarged copy is searched), and a window scanned over
+// calls passes over the octaves whose smallest face is larger.
+TEST(FaceDetector, AWindowSearchBoundedAboveTakesNoLargerFace) {
+  TrackerParams p;
+  const cv::Mat img = photo("messi5.jpg");
+  const cv::Rect small(200, 70, 90, 90);
+  FaceDetector d(p);
+  const auto any = d.window_step_all(img, small);
+  ASSERT_FALSE(any.empty());
+  const double w = any.front().face.width;
+  EXPECT_GT(w, 35.0);
+  EXPECT_FALSE(d.window_step_all(img, small, 1.1 * w).empty());
+  EXPECT_TRUE(d.window_step_all(img, small, 0.75 * w).empty());
+  EXPECT_DOUBLE_EQ(d.last_step_pixels(), 90.0 * 90.0 * 5);  // 30 px: the window as it is, and enlarged
+  EXPECT_TRUE(d.window_step_all(img, small, 15.0).empty());
+  EXPECT_DOUBLE_EQ(d.last_step_pixels(), 90.0 * 90.0 * 4);  // 15 px: only the enlarged copy
+  // Over the budget: scanned over calls; a bound below the face finds nothing in a whole cycle of the scan.
+  const cv::Rect roi(150, 40, 200, 200);
+  FaceDetector bounded(p), open(p);
+  bool found_bounded = false, found_open = false;
+  for (int calls = 0; calls < 20; ++calls) {
+    found_bounded = found_bounded || !bounded.window_step_all(img, roi, 0.75 * w).empty();
+    EXPECT_LE(bounded.last_step_pixels(), p.face.scan_slice_pixels);
+    found_open = found_open || !open.window_step_all(img, roi, 1.1 * w).empty();
+  }
+  EXPECT_FALSE(found_bounded);
+  EXPECT_TRUE(found_open);
+}
+
 // A face below min_face_px is found only in the enlarged copy (face.upscale 2); a caller that takes no face
 // below min_face (the re-check: half the face it expects) has the enlarged copy searched from there only, or
 // not at all when every face it holds is smaller.
