@@ -42,6 +42,8 @@ const OrientationTable& orientation_table() {
 
 }  // namespace
 
+Fhog::Fhog() { orientation_table(); }
+
 void Fhog::compute(const cv::Mat& patch, int cell, std::vector<cv::Mat>& out, size_t first) {
   CV_Assert(patch.depth() == CV_8U && (patch.channels() == 1 || patch.channels() == 3) && cell >= 1);
   const int rows = patch.rows / cell;

@@ -14,6 +14,10 @@ class Fhog {
  public:
   static constexpr int kChannels = 31;
 
+  // Builds the process's orientation table (about 5 ms, once) if no Fhog has: a tracker's first frame does not
+  // wait for it.
+  Fhog();
+
   // patch: CV_8UC1 or CV_8UC3 (the gradient of the strongest colour channel is used, as Felzenszwalb).
   // out[first .. first+30] get CV_32F maps of floor(rows/cell) x floor(cols/cell) cells (out grows if
   // needed); cell centres sit at (i + 0.5) * cell pixels. Border cells use the nearest blocks in the map.
