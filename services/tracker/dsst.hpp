@@ -142,7 +142,8 @@ class Dsst {
   cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_, scale_interp_f_;
   // Colour model (colour_weight > 0 and colour frames): 32x32x32-bin BGR histograms, each summing to 1.
   bool colour_ = false;
-  std::vector<float> fg_hist_, bg_hist_, hist_tmp_fg_, hist_tmp_bg_;
+  std::vector<float> fg_hist_, bg_hist_, hist_tmp_fg_, hist_tmp_bg_;  // hist_tmp_*: one frame's counts, zero between
+  std::vector<int> counted_fg_, counted_bg_;                          // the bins counted this frame
   cv::Mat likelihood_, colour_cells_, colour_resp_, merged_;
 };
 
