@@ -146,14 +146,20 @@ void Fhog::compute(const cv::Mat& patch, int cell, std::vector<cv::Mat>& out, si
   // border cells get the nearest inner blocks (features.cc drops the border instead).
   const int brows = std::max(rows - 1, 1);
   const int bcols = std::max(cols - 1, 1);
-  auto block = [&](int by, int bx) {
-    by = std::clamp(by, 0, brows - 1);
-    bx = std::clamp(bx, 0, bcols - 1);
+  // Each block's inverse norm once (a cell takes four blocks, a block serves four cells).
+  block_norm_.create(brows, bcols, CV_32F);
+  for (int by = 0; by < brows; ++by) {
     const int by1 = std::min(by + 1, rows - 1);
-    const int bx1 = std::min(bx + 1, cols - 1);
     const float* n = norm_.ptr<float>();
-    const float s = n[by * cols + bx] + n[by * cols + bx1] + n[by1 * cols + bx] + n[by1 * cols + bx1];
-    return 1.0f / std::sqrt(s + kEps);
+    float* out = block_norm_.ptr<float>(by);
+    for (int bx = 0; bx < bcols; ++bx) {
+      const int bx1 = std::min(bx + 1, cols - 1);
+      const float s = n[by * cols + bx] + n[by * cols + bx1] + n[by1 * cols + bx] + n[by1 * cols + bx1];
+      out[bx] = 1.0f / std::sqrt(s + kEps);
+    }
+  }
+  auto block = [&](int by, int bx) {
+    return block_norm_.at<float>(std::clamp(by, 0, brows - 1), std::clamp(bx, 0, bcols - 1));
   };
 
   for (int y = 0; y < rows; ++y) {

@@ -26,6 +26,7 @@ class Fhog {
  private:
   cv::Mat hist_;  // rows x cols x 18 orientation histogram, CV_32F rows*cols x 18
   cv::Mat norm_;  // per-cell energy of the 9 contrast-insensitive bins, CV_32F
+  cv::Mat block_norm_;  // per 2x2-cell block: 1 / sqrt(its energy + eps), CV_32F
   std::vector<int> gdx_, gdy_, gv_;  // one row's strongest gradient and its squared magnitude
   std::vector<int> xcell_;   // per patch column: left cell of its bilinear pair
   std::vector<float> xw_;    // per patch column: weight of the right cell
