@@ -92,9 +92,7 @@ void Fhog::compute(const cv::Mat& patch, int cell, std::vector<cv::Mat>& out, si
     int* gdx = gdx_.data();
     int* gdy = gdy_.data();
     int* gv = gv_.data();
-    for (int x = 0; x < w; ++x) {
-      const int xl = (x > 0 ? x - 1 : 0) * nch;
-      const int xr = (x + 1 < patch.cols ? x + 1 : patch.cols - 1) * nch;
+    const auto strongest = [&](int x, int xl, int xr) {
       int bdx = static_cast<int>(mid[xr]) - static_cast<int>(mid[xl]);
       int bdy = static_cast<int>(dn[x * nch]) - static_cast<int>(up[x * nch]);
       int bv = bdx * bdx + bdy * bdy;
@@ -110,7 +108,40 @@ void Fhog::compute(const cv::Mat& patch, int cell, std::vector<cv::Mat>& out, si
       gdx[x] = bdx;
       gdy[x] = bdy;
       gv[x] = bv;
+    };
+    // The first and last columns (replicated border) on their own; the columns between, with both neighbours in
+    // the patch, in a loop per channel count (the general one, with its clamped neighbours and a channel loop of
+    // run-time length, made FHOG a fifth slower on a colour patch).
+    const int inner_end = std::min(w, patch.cols - 1);
+    strongest(0, 0, std::min(1, patch.cols - 1) * nch);
+    if (nch == 3) {
+      for (int x = 1; x < inner_end; ++x) {
+        const uchar* m = mid + 3 * x;
+        const uchar* u = up + 3 * x;
+        const uchar* d = dn + 3 * x;
+        int bdx = m[3] - m[-3], bdy = d[0] - u[0];
+        int bv = bdx * bdx + bdy * bdy;
+        const int dx1 = m[4] - m[-2], dy1 = d[1] - u[1], v1 = dx1 * dx1 + dy1 * dy1;
+        bdx = v1 > bv ? dx1 : bdx;
+        bdy = v1 > bv ? dy1 : bdy;
+        bv = v1 > bv ? v1 : bv;
+        const int dx2 = m[5] - m[-1], dy2 = d[2] - u[2], v2 = dx2 * dx2 + dy2 * dy2;
+        bdx = v2 > bv ? dx2 : bdx;
+        bdy = v2 > bv ? dy2 : bdy;
+        bv = v2 > bv ? v2 : bv;
+        gdx[x] = bdx;
+        gdy[x] = bdy;
+        gv[x] = bv;
+      }
+    } else {
+      for (int x = 1; x < inner_end; ++x) {
+        const int dx = mid[x + 1] - mid[x - 1], dy = dn[x] - up[x];
+        gdx[x] = dx;
+        gdy[x] = dy;
+        gv[x] = dx * dx + dy * dy;
+      }
     }
+    for (int x = std::max(1, inner_end); x < w; ++x) strongest(x, (x - 1) * nch, std::min(x + 1, patch.cols - 1) * nch);
     // Pass 2: orientation bin and bilinear vote into the 4 nearest cells.
     for (int x = 0; x < w; ++x) {
       const int best_v = gv[x];
