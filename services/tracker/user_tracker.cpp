@@ -201,7 +201,14 @@ bool UserTracker::search(const cv::Mat& frame) {
       track_body_ = fit.body;
       start(frame, fit.box, InitSource::kFace);
     }
-    torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+    // A known user's clothes are blended with what their torso shows now, as a re-check blends them, not replaced
+    // by it: re-found with a walker's shirt still over part of the torso (a match of 0.62 in a CI bystander run,
+    // above the gate), the replaced colours matched the user's own shirt 0.45 once the walker had gone, the next
+    // re-check took their face for someone else's, and the search refused them for user_memory_frames (10 s).
+    if (known)
+      wears_users_clothes(frame, face.face, true);
+    else
+      torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
     found_face(frame, face.face);
     faces_.restart_scan();  // the next search (after a loss) scans from the first tile
     return true;

@@ -71,6 +71,8 @@ class UserTracker {
   int64_t other_faces() const { return other_faces_; }
   //! Re-checks that found neither the user's face nor their clothes where the box puts them: the track dropped.
   int64_t off_user() const { return off_user_; }
+  //! The user's clothes as the track knows them (torso chromaticity; empty: a manual track, no gate).
+  const std::vector<float>& user_clothes() const { return torso_colours_; }
   //! LOST frames whose whole-frame scan step was left out: the user's face too small for it (lost_scan_face_growth).
   int64_t scans_skipped() const { return scans_skipped_; }
   //! The ratios of the current track's body box to its face (the preset, or fitted when it started on a face).

@@ -289,6 +289,44 @@ TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirBuild) {
   EXPECT_GT(iou_after, 0.8);
 }
 
+// ... and keeps their clothes: re-found with the walker's red shirt over part of their torso, the track's
+// clothes are blended with what shows, as a re-check blends them, not replaced by it. A CI bystander run replaced
+// them at such a moment (match 0.62, above the gate's 0.5): once the walker had gone, the user's own shirt
+// matched 0.45, the re-check took their face for someone else's, and the search refused them for the 10 s of
+// user_memory_frames (that run's log, all its frames: 320 frames LOST before, 6 now). Here the walker stops
+// 0.18 m to the user's side; the user's own torso is rendered without the walker on the same frame.
+TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirClothes) {
+  std::string yaml = kStandsInFront;
+  const std::string walks_out = "{t: 6.5, east: 2.6, transition_s: 2}";
+  yaml.replace(yaml.find(walks_out), walks_out.size(), "{t: 6, east: 0.18, transition_s: 0.5}");
+  std::string alone = yaml;
+  const size_t from = alone.find("bystanders:"), to = alone.find("keyframes:\n  - {t: 0, gesture: REST}");
+  alone.erase(from, to - from);
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::parse(yaml, "half-hidden.yaml"), 1), user_alone(sp, Scenario::parse(alone, "alone.yaml"), 1);
+  const TrackerParams tp;
+  UserTracker tracker(tp);
+  bool lost = false;
+  for (int i = 0; i < static_cast<int>(world.scenario().duration_s() * sp.fps); ++i) {
+    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
+    const TrackOutput out = tracker.process(f.bgr);
+    lost = lost || (i > 50 && out.status != TrackStatus::kTracking);
+    if (!lost || out.status != TrackStatus::kTracking) continue;
+    ASSERT_TRUE(out.face.has_value());
+    const SyntheticFrame clean = user_alone.render(i / sp.fps, i, std::nullopt);
+    const auto own = torso_colours(clean.bgr, cv::Rect2d(clean.truth.face_box), tp.body_fit, tp.torso_colour_bins, tp.torso_dark_level);
+    const auto shown = torso_colours(f.bgr, *out.face, tp.body_fit, tp.torso_colour_bins, tp.torso_dark_level);
+    const double kept = colour_match(tracker.user_clothes(), own), replaced = colour_match(shown, own);
+    std::printf("user re-found half hidden at frame %d: the track's clothes match the user's own shirt %.3f (what "
+                "showed: %.3f)\n", i, kept, replaced);
+    ASSERT_GE(i, static_cast<int>(6.5 * sp.fps));  // with the walker standing over part of them
+    EXPECT_LT(replaced, 0.8);                      // the shirt that showed was in part the walker's
+    EXPECT_GT(kept, 0.85);
+    return;
+  }
+  FAIL() << "the user was not lost and found again";
+}
+
 // The user re-found on a part of their face (a CI bystander run: the scan's pyramid found a 22 px face inside the
 // user's 36 px one, and a body box from it was 62 px wide for their 90): a known user's face much smaller than
 // their last one is taken at the last one's size. Here, once the walker has covered the user's face (LOST), the
