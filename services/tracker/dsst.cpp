@@ -231,21 +231,27 @@ cv::Rect2d Dsst::target_in_patch(const Sample& s) const {
   return cv::Rect2d(c.x - sz.width / 2, c.y - sz.height / 2, sz.width, sz.height);
 }
 
-namespace {
-// h = (1 - rate) h + rate * counts / n, bin by bin, as one pass over every bin did: the decay (the whole update of
-// a bin this frame left empty) over all of them, then each bin the frame counted, which is cleared for the next.
-// Bit for bit the same as before, without the pass's 65536 double divisions and two 128 KB clears a frame (a
-// twentieth of the tracker's time).
-void blend_histogram(std::vector<float>& h, std::vector<float>& counts, const std::vector<int>& counted, double n,
-                     float rate) {
+void Dsst::BinCounts::add(int b) {
+  float& c = n[static_cast<size_t>(b)];
+  if (c == 0) counted.push_back(b);
+  c += 1;
+  total += 1;
+}
+
+void Dsst::BinCounts::clear() {
+  for (const int b : counted) n[static_cast<size_t>(b)] = 0.0f;
+  counted.clear();
+  total = 0;
+}
+
+// h = (1 - rate) h + rate * counts / total, bin by bin, as one pass over every bin did: the decay (the whole update
+// of a bin this frame left empty) over all of them, then each bin the frame counted. Bit for bit the same as that
+// pass, without its 65536 double divisions and two 128 KB clears a frame (a twentieth of the tracker's time).
+void Dsst::BinCounts::blend_into(std::vector<float>& h, float rate) const {
   const float keep = 1.0f - rate;
   for (float& v : h) v *= keep;
-  for (const int b : counted) {
-    h[static_cast<size_t>(b)] += rate * static_cast<float>(counts[static_cast<size_t>(b)] / n);
-    counts[static_cast<size_t>(b)] = 0.0f;
-  }
+  for (const int b : counted) h[static_cast<size_t>(b)] += rate * static_cast<float>(n[static_cast<size_t>(b)] / total);
 }
-}  // namespace
 
 // Foreground: the target box shrunk by a tenth each side (Staple's inner region, less background at its
 // corners); background: the window outside the whole target box.
@@ -253,42 +259,30 @@ void Dsst::learn_colour(const Sample& s, bool first) {
   if (first) {
     fg_hist_.assign(kColourBins, 0.0f);
     bg_hist_.assign(kColourBins, 0.0f);
-    hist_tmp_fg_.assign(kColourBins, 0.0f);
-    hist_tmp_bg_.assign(kColourBins, 0.0f);
+    fg_counts_ = BinCounts{std::vector<float>(kColourBins, 0.0f), {}, 0};
+    bg_counts_ = BinCounts{std::vector<float>(kColourBins, 0.0f), {}, 0};
   }
   if (patch_.type() != CV_8UC3) return;  // a grey frame within a colour track: not learnt
   const cv::Rect2d t = target_in_patch(s);
   const cv::Rect2d inner(t.x + 0.1 * t.width, t.y + 0.1 * t.height, 0.8 * t.width, 0.8 * t.height);
-  counted_fg_.clear();
-  counted_bg_.clear();
-  double nf = 0, nb = 0;
   for (int y = 0; y < patch_.rows; ++y) {
     const cv::Vec3b* row = patch_.ptr<cv::Vec3b>(y);
     for (int x = 0; x < patch_.cols; ++x) {
       const cv::Point2d c(x + 0.5, y + 0.5);
-      if (inner.contains(c)) {
-        const int b = colour_bin(row[x]);
-        float& n = hist_tmp_fg_[static_cast<size_t>(b)];
-        if (n == 0) counted_fg_.push_back(b);
-        n += 1;
-        ++nf;
-      } else if (!t.contains(c)) {
-        const int b = colour_bin(row[x]);
-        float& n = hist_tmp_bg_[static_cast<size_t>(b)];
-        if (n == 0) counted_bg_.push_back(b);
-        n += 1;
-        ++nb;
-      }
+      if (inner.contains(c))
+        fg_counts_.add(colour_bin(row[x]));
+      else if (!t.contains(c))
+        bg_counts_.add(colour_bin(row[x]));
     }
   }
-  if (nf == 0 || nb == 0) {  // a window all target or all border: nothing to learn from
-    for (const int b : counted_fg_) hist_tmp_fg_[static_cast<size_t>(b)] = 0.0f;
-    for (const int b : counted_bg_) hist_tmp_bg_[static_cast<size_t>(b)] = 0.0f;
-    return;
+  // A window all target or all border has nothing to learn from.
+  if (fg_counts_.total > 0 && bg_counts_.total > 0) {
+    const float rate = first ? 1.0f : static_cast<float>(p_.colour_learning_rate);
+    fg_counts_.blend_into(fg_hist_, rate);
+    bg_counts_.blend_into(bg_hist_, rate);
   }
-  const float rate = first ? 1.0f : static_cast<float>(p_.colour_learning_rate);
-  blend_histogram(fg_hist_, hist_tmp_fg_, counted_fg_, nf, rate);
-  blend_histogram(bg_hist_, hist_tmp_bg_, counted_bg_, nb, rate);
+  fg_counts_.clear();
+  bg_counts_.clear();
 }
 
 // Per pixel P(target | colour) = fg / (fg + bg); per cell of the window, its Gaussian-weighted mean around

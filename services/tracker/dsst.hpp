@@ -142,8 +142,18 @@ class Dsst {
   cv::Mat resp_f_, resp_, scale_resp_f_, scale_resp_, scale_interp_f_;
   // Colour model (colour_weight > 0 and colour frames): 32x32x32-bin BGR histograms, each summing to 1.
   bool colour_ = false;
-  std::vector<float> fg_hist_, bg_hist_, hist_tmp_fg_, hist_tmp_bg_;  // hist_tmp_*: one frame's counts, zero between
-  std::vector<int> counted_fg_, counted_bg_;                          // the bins counted this frame
+  std::vector<float> fg_hist_, bg_hist_;
+  // One frame's counts of a histogram's bins, all zero between frames: the bins counted are listed, so that the
+  // blend and the clear touch those alone.
+  struct BinCounts {
+    std::vector<float> n;
+    std::vector<int> counted;
+    double total = 0;
+    void add(int bin);
+    void blend_into(std::vector<float>& hist, float rate) const;
+    void clear();
+  };
+  BinCounts fg_counts_, bg_counts_;
   cv::Mat likelihood_, colour_cells_, colour_resp_, merged_;
 };
 
