@@ -250,14 +250,10 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
   // The frames per second of each tracker: the median of its passes' (the boxes are the first pass's; a pass
   // gives the same boxes every time, the trackers being deterministic).
   std::vector<std::vector<double>> pass_ms(makers.size()), pass_search_ms(makers.size());
-  for (size_t ri = 0; ri < makers.size(); ++ri)
-   for (int pass = 0; pass < repeat; ++pass) {
-    std::unique_ptr<Runner> made = makers[ri]();
-    Runner& r = *made;
-    const bool first = ri == 0 && pass == 0;  // ours: decides the start (its own face search with --auto-init) for all
-    const bool record = pass == 0;            // the pass whose boxes are scored and traced
+  // One pass of tracker ri (r, made afresh) over the sequence; record: the pass whose boxes are scored and traced.
+  const auto run_pass = [&](Runner& r, size_t ri, bool record) {
+    const bool first = ri == 0 && record;  // ours: decides the start (its own face search with --auto-init) for all
     const std::unique_ptr<FrameSource> src = open_source();
-    std::fprintf(stderr, "%s: pass %d of %d\n", r.name().c_str(), pass + 1, repeat);
     int frame = 0;
     EvalFrame f;
     while (src->next(f)) {
@@ -342,10 +338,16 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
     }
     if (first && frames == 0) throw std::runtime_error("the sequence has no frames");
     if (first && init_frame < 0) throw std::runtime_error("our tracker started no track in any frame (--auto-init: no face found)");
-    pass_ms[ri].push_back(r.updates ? r.update_us / 1000.0 / (r.updates + 1) : 0.0);  // + the init frame
-    pass_search_ms[ri].push_back(r.search_updates ? r.search_us / 1000.0 / r.search_updates : 0.0);
-    if (record) runners.push_back(std::move(made));
-  }
+  };
+  for (size_t ri = 0; ri < makers.size(); ++ri)
+    for (int pass = 0; pass < repeat; ++pass) {
+      std::unique_ptr<Runner> r = makers[ri]();
+      std::fprintf(stderr, "%s: pass %d of %d\n", r->name().c_str(), pass + 1, repeat);
+      run_pass(*r, ri, pass == 0);
+      pass_ms[ri].push_back(r->updates ? r->update_us / 1000.0 / (r->updates + 1) : 0.0);  // + the init frame
+      pass_search_ms[ri].push_back(r->search_updates ? r->search_us / 1000.0 / r->search_updates : 0.0);
+      if (pass == 0) runners.push_back(std::move(r));
+    }
   if (!trace_path.empty()) {
     FILE* trace = std::fopen(trace_path.c_str(), "w");
     if (!trace) throw std::runtime_error(trace_path + ": cannot write the trace");
