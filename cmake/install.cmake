@@ -1,6 +1,6 @@
 # What `cmake --install build --prefix P` installs, so that nothing needs the checkout afterwards:
 #   P/bin/gpilot-*                       every binary (gpilot_add_executable)
-#   P/share/gesture-pilot/               the data the binaries load, in the checkout's layout, so that the
+#   P/share/gesture-pilot/               the data the binaries load (pose models included), in the checkout's layout, so that the
 #                                        relative paths of config files resolve the same (common/paths.cpp
 #                                        finds it from the executable: <exe dir>/../share/gesture-pilot)
 #   P/lib/systemd/system/gpilot-*.service  the companion-computer units (deploy/systemd/generate, prefix P)
@@ -16,6 +16,18 @@ install(FILES data/skin/skin_model.yaml data/skin/synthetic_skin_tones.csv data/
         DESTINATION ${_share}/data/skin)
 install(FILES data/people/astronaut.png DESTINATION ${_share}/data/people)
 install(DIRECTORY data/backgrounds DESTINATION ${_share}/data)
+# The pose models (hands.pose), converted by deploy/models (git-ignored, made by deploy/setup), with the
+# Apache-2.0 licence and the NOTICE of what was changed, which travel with them.
+set(_pose_models models/pose/pose_detection.onnx models/pose/pose_landmark_lite.onnx
+                 models/pose/pose_landmark_full.onnx)
+install(CODE "
+  foreach(_m ${_pose_models})
+    if(NOT EXISTS \"${CMAKE_SOURCE_DIR}/\${_m}\")
+      message(FATAL_ERROR \"\${_m} missing: run deploy/setup (deploy/models converts the pose models)\")
+    endif()
+  endforeach()
+")
+install(FILES ${_pose_models} models/pose/LICENSE models/pose/NOTICE DESTINATION ${_share}/models/pose)
 # Configs, scenarios and the process list (gpilot-launch's default --services).
 install(DIRECTORY deploy/config deploy/scenarios DESTINATION ${_share}/deploy FILES_MATCHING PATTERN "*.yaml")
 install(FILES deploy/services.yaml DESTINATION ${_share}/deploy)

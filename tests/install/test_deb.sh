@@ -25,7 +25,9 @@ for f in usr/share/gesture-pilot/data/skin/skin_model.yaml usr/share/gesture-pil
          usr/share/gesture-pilot/deploy/scenarios/tour.yaml usr/share/gesture-pilot/deploy/services.yaml \
          usr/share/gesture-pilot/data/people/astronaut.png usr/include/gpilot/gesture_cmd_t.hpp \
          usr/lib/cmake/gesture_pilot/gesture_pilotConfig.cmake usr/lib/python3/dist-packages/gpilot/hand_obs_t.py \
-         usr/lib/python3/dist-packages/gpilot_lcmlog.py; do
+         usr/lib/python3/dist-packages/gpilot_lcmlog.py usr/share/gesture-pilot/models/pose/pose_landmark_lite.onnx \
+         usr/share/gesture-pilot/models/pose/pose_detection.onnx usr/share/gesture-pilot/models/pose/NOTICE \
+         usr/share/gesture-pilot/models/pose/LICENSE; do
   grep -qx "$f" "$tmp/contents" || fail "$f not in the package"
 done
 [ -f "$build/gpilot_lcmtypes.jar" ] && { grep -qx usr/share/java/gpilot_lcmtypes.jar "$tmp/contents" || fail "the jar is not in the package"; }

@@ -32,7 +32,10 @@ if [ "${GPILOT_INSTALL_TEST_INNER:-}" != 1 ]; then
            share/gesture-pilot/data/README.md share/gesture-pilot/deploy/config/default.yaml \
            share/gesture-pilot/deploy/config/synthetic.yaml share/gesture-pilot/deploy/scenarios/tour.yaml \
            share/gesture-pilot/deploy/services.yaml lib/cmake/gesture_pilot/gesture_pilotConfig.cmake \
-           lib/python3/dist-packages/gpilot/__init__.py lib/python3/dist-packages/gpilot_lcmlog.py; do
+           lib/python3/dist-packages/gpilot/__init__.py lib/python3/dist-packages/gpilot_lcmlog.py \
+           share/gesture-pilot/models/pose/pose_landmark_lite.onnx share/gesture-pilot/models/pose/pose_landmark_full.onnx \
+           share/gesture-pilot/models/pose/pose_detection.onnx share/gesture-pilot/models/pose/LICENSE \
+           share/gesture-pilot/models/pose/NOTICE; do
     [ -f "$p/$f" ] || fail "$f not installed"
   done
   ntypes=$(ls "$src"/lcmtypes/*.lcm | wc -l)
