@@ -16,13 +16,13 @@ NCHW_TO_NHWC = (0, 2, 3, 1)
 RELU6_RANGE = (0.0, 6.0)
 
 
-def fused_activation(g, name, x, activation):
+def fused_activation(g, x, activation):
     if activation in (None, "NONE"):
         return x
     if activation == "RELU":
-        return g.node("Relu", [x], name=name)
+        return g.node("Relu", [x])
     if activation == "RELU6":
-        return g.node("Clip", [x], name=name, min=RELU6_RANGE[0], max=RELU6_RANGE[1])
+        return g.node("Clip", [x], min=RELU6_RANGE[0], max=RELU6_RANGE[1])
     raise ConversionError(f"fused activation {activation} is not supported")
 
 
@@ -44,7 +44,7 @@ def conv_2d(g, op):
         ins.append(g.initializer(g.const(op.inputs[2], "CONV_2D bias")))
     y = g.node("Conv", ins, kernel_shape=[w.shape[1], w.shape[2]], strides=[o["stride_h"], o["stride_w"]],
                dilations=[o["dilation_h"], o["dilation_w"]], pads=_conv_pads(g, op, w.shape[1], w.shape[2]))
-    return fused_activation(g, None, y, o["activation"])
+    return fused_activation(g, y, o["activation"])
 
 
 def depthwise_conv_2d(g, op):
@@ -59,7 +59,7 @@ def depthwise_conv_2d(g, op):
     y = g.node("Conv", ins, kernel_shape=[w.shape[1], w.shape[2]], strides=[o["stride_h"], o["stride_w"]],
                dilations=[o["dilation_h"], o["dilation_w"]], group=channels,
                pads=_conv_pads(g, op, w.shape[1], w.shape[2]))
-    return fused_activation(g, None, y, o["activation"])
+    return fused_activation(g, y, o["activation"])
 
 
 def max_pool_2d(g, op):
@@ -72,12 +72,12 @@ def max_pool_2d(g, op):
         pads = [t, l, b, r]
     y = g.node("MaxPool", [g.value(op.inputs[0])], kernel_shape=[kh, kw], strides=[o["stride_h"], o["stride_w"]],
                pads=pads)
-    return fused_activation(g, None, y, o["activation"])
+    return fused_activation(g, y, o["activation"])
 
 
 def add(g, op):
     ins = [g.value_or_const(i) for i in op.inputs]
-    return fused_activation(g, None, g.node("Add", ins), op.options["activation"])
+    return fused_activation(g, g.node("Add", ins), op.options["activation"])
 
 
 def logistic(g, op):
@@ -126,8 +126,11 @@ def concatenation(g, op):
     axis = op.options["axis"] % rank
     if rank == 4:
         axis = NHWC_TO_NCHW.index(axis)
-    y = g.node("Concat", [g.value_or_const(i) for i in op.inputs], axis=axis)
-    return fused_activation(g, None, y, op.options["activation"])
+    for i in op.inputs:
+        if i in g.consts:   # cv::dnn 4.6 fills such a Concat with garbage (tests/unit/model_convert)
+            raise ConversionError(f"CONCATENATION of the constant '{g.model.tensors[i].name}': not supported")
+    y = g.node("Concat", [g.value(i) for i in op.inputs], axis=axis)
+    return fused_activation(g, y, op.options["activation"])
 
 
 def depth_to_space(g, op):

@@ -98,7 +98,7 @@ def depth_to_space(x, bs):
     return y.reshape(n, h * bs, w * bs, c // (bs * bs))
 
 
-def run_op(op, args, consts):
+def run_op(op, args):
     """One operator on numpy inputs (None for omitted optional ones); its first output."""
     o = op.options
     if op.op == "CONV_2D":
@@ -138,5 +138,5 @@ def run(model, inputs, output_names=None):
         values[i] = np.asarray(inputs[t.name], np.float64).reshape(t.shape)
     for op in ops:
         args = [values[i] if i >= 0 else None for i in op.inputs]
-        values[op.outputs[0]] = run_op(op, args, consts)
+        values[op.outputs[0]] = run_op(op, args)
     return {model.tensors[i].name: values[i].astype(np.float32) for i in model.outputs}

@@ -196,7 +196,8 @@ def read_model(data: bytes) -> Model:
 
 def _read_model(buf) -> Model:
     root = _Table(buf, flatbuffers.encode.Get(flatbuffers.packer.uoffset, buf, 0))
-    buffers = root.tables(4)
+    # Every buffer read now, used or not: a file cut short anywhere in its buffers is refused.
+    buffers = [b.vector(0, np.uint8) for b in root.tables(4)]
     codes = []
     for c in root.tables(1):
         code = max(c.byte(0), c.int(3))
@@ -218,7 +219,7 @@ def _read_model(buf) -> Model:
         b = t.uint(2)
         if b >= len(buffers):
             raise ConversionError(f"tensor {i} '{tensor.name}' refers to buffer {b} of {len(buffers)}")
-        raw = buffers[b].vector(0, np.uint8) if b else np.zeros(0, np.uint8)
+        raw = buffers[b] if b else np.zeros(0, np.uint8)
         if raw.size:
             n = raw.size // np.dtype(dtype).itemsize
             expected = int(np.prod(tensor.shape)) if tensor.sparsity is None else n
