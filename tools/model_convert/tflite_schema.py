@@ -131,8 +131,8 @@ class _Table:
 
 
 def _options(op, t):
-    """The builtin options of one operator as a dict (slots per the op's *Options table)."""
-    if op in ("CONV_2D",):
+    """The builtin options of a converted op as a dict (slots per its *Options table); {} for others."""
+    if op == "CONV_2D":
         return None if t is None else dict(padding=PADDINGS.get(t.byte(0)), stride_w=t.int(1), stride_h=t.int(2),
                                            activation=ACTIVATIONS.get(t.byte(3)), dilation_w=t.int(4, 1),
                                            dilation_h=t.int(5, 1))
@@ -140,17 +140,14 @@ def _options(op, t):
         return None if t is None else dict(padding=PADDINGS.get(t.byte(0)), stride_w=t.int(1), stride_h=t.int(2),
                                            depth_multiplier=t.int(3), activation=ACTIVATIONS.get(t.byte(4)),
                                            dilation_w=t.int(5, 1), dilation_h=t.int(6, 1))
-    if op in ("AVERAGE_POOL_2D", "MAX_POOL_2D"):
+    if op == "MAX_POOL_2D":
         return None if t is None else dict(padding=PADDINGS.get(t.byte(0)), stride_w=t.int(1), stride_h=t.int(2),
                                            filter_w=t.int(3), filter_h=t.int(4),
                                            activation=ACTIVATIONS.get(t.byte(5)))
-    if op in ("ADD", "MUL"):
+    if op == "ADD":
         return dict(activation=ACTIVATIONS.get(t.byte(0)) if t else "NONE")
     if op == "CONCATENATION":
         return None if t is None else dict(axis=t.int(0), activation=ACTIVATIONS.get(t.byte(1)))
-    if op == "FULLY_CONNECTED":
-        return dict(activation=ACTIVATIONS.get(t.byte(0)) if t else "NONE",
-                    weights_format=t.byte(1) if t else 0, keep_num_dims=t.bool(2) if t else False)
     if op == "RESHAPE":
         return dict(new_shape=[int(v) for v in t.vector(0, np.int32)] if t else None)
     if op == "RESIZE_BILINEAR":
