@@ -58,13 +58,17 @@ std::vector<PersonDetection> PersonDetector::detect(const cv::Mat& bgr, const cv
     cv::Matx23d m = image_to_crop(box, kDetectorInputSize);
     for (int r = 0; r < 2; ++r) m(r, 2) += 0.5 * (m(r, 0) + m(r, 1)) - 0.5;  // pixel centres, as warp_roi
     // Outside the region is black too: only the region is looked at.
-    cv::Mat masked = bgr;
     const cv::Rect inside = cv::Rect(cv::Point(static_cast<int>(std::floor(region.x)), static_cast<int>(std::floor(region.y))),
                                      cv::Point(static_cast<int>(std::ceil(region.x + region.width)),
                                                static_cast<int>(std::ceil(region.y + region.height)))) &
                             cv::Rect(0, 0, bgr.cols, bgr.rows);
-    if (inside != cv::Rect(0, 0, bgr.cols, bgr.rows)) {
-      masked = cv::Mat::zeros(bgr.size(), bgr.type());
+    // A new buffer, never bgr's: the caller's frame is not touched.
+    cv::Mat masked;
+    if (inside == cv::Rect(0, 0, bgr.cols, bgr.rows)) {
+      masked = bgr;
+    } else {
+      masked.create(bgr.size(), bgr.type());
+      masked.setTo(cv::Scalar::all(0));
       bgr(inside).copyTo(masked(inside));
     }
     cv::warpAffine(masked, crop, m, cv::Size(kDetectorInputSize, kDetectorInputSize), cv::INTER_LINEAR, cv::BORDER_CONSTANT);

@@ -30,10 +30,10 @@ cv::Rect2f grow_box(const cv::Rect2f& r, float share) {
 }
 
 std::optional<PersonDetection> choose_user_detection(const std::vector<PersonDetection>& detections,
-                                                     const cv::Rect2f& user_box, float margin) {
+                                                     const cv::Rect2f& user_box) {
   if (detections.empty()) return std::nullopt;
   if (user_box.area() <= 0) return detections.front();
-  const cv::Rect2f gate = grow_box(user_box, margin);
+  const cv::Rect2f& gate = user_box;
   std::optional<PersonDetection> best;
   float best_iou = -1.0f;
   for (const PersonDetection& d : detections) {
@@ -82,7 +82,7 @@ std::optional<PoseRoi> PoseEstimator::seed_roi(const cv::Mat& bgr, const cv::Rec
     nonfinite = true;
     return std::nullopt;
   }
-  const std::optional<PersonDetection> d = choose_user_detection(found, user_box, static_cast<float>(params_.track_margin));
+  const std::optional<PersonDetection> d = choose_user_detection(found, user_box);
   if (!d) return std::nullopt;
   return roi_from_alignment(d->keypoints[person_keypoint::kHipCentre], d->keypoints[person_keypoint::kBodyScale],
                             static_cast<float>(params_.roi_scale));

@@ -67,11 +67,12 @@ class PoseEstimator {
   PoseCounters counters_;
 };
 
-// The detection whose hip centre lies in user_box grown by margin (share of its size, each side) and whose
-// full-body square (centred on the hips, side twice the alignment distance) overlaps user_box most; nullopt when
-// none. An empty user_box takes the first (best-scoring) detection.
+// The detection whose hip centre lies in user_box (the tracker's box reaches from the head to the knees: the
+// user's hips are in it; a neighbour's beside it are not) and whose full-body square (centred on the hips, side
+// twice the alignment distance) overlaps user_box most; nullopt when none. An empty user_box takes the first
+// (best-scoring) detection.
 std::optional<PersonDetection> choose_user_detection(const std::vector<PersonDetection>& detections,
-                                                     const cv::Rect2f& user_box, float margin);
+                                                     const cv::Rect2f& user_box);
 
 // r grown by share x its width on the left and right and share x its height above and below.
 cv::Rect2f grow_box(const cv::Rect2f& r, float share);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "pose/landmark_model.hpp"
 #include "pose/person_detector.hpp"
 #include "pose/pose_estimator.hpp"
 #include "pose/pose_params.hpp"
@@ -186,13 +187,40 @@ TEST(ChooseUserDetection, HipsInTheBoxAndBestOverlapNeverTheBystander) {
   PersonDetection small = det(0.9f, {240, 300, 10, 10}, {245, 340});
   small.keypoints[1] = {245, 320};
   // WHEN chosen
-  const auto chosen = choose_user_detection({bystander, small, me}, user, 0.25f);
+  const auto chosen = choose_user_detection({bystander, small, me}, user);
   // THEN the user's
   ASSERT_TRUE(chosen);
   EXPECT_FLOAT_EQ(chosen->score, 0.8f);
   // no detection in the box: none; no box: the best-scoring
-  EXPECT_FALSE(choose_user_detection({bystander}, user, 0.25f));
-  EXPECT_FLOAT_EQ(choose_user_detection({bystander, me}, cv::Rect2f(), 0.25f)->score, 0.95f);
+  EXPECT_FALSE(choose_user_detection({bystander}, user));
+  EXPECT_FLOAT_EQ(choose_user_detection({bystander, me}, cv::Rect2f())->score, 0.95f);
+}
+
+TEST(DecodePoseLandmarks, CropPixelsToFramePixelsZScaledLikeXVisibilitySigmoidAndNaNRefused) {
+  // GIVEN a ROI of side 512 centred at (300, 200), upright: crop pixel = 2 frame pixels
+  const PoseRoi roi{{300, 200}, 512, 0};
+  std::vector<float> v(39 * 5, 0.0f);
+  const float wrist[5] = {64, 192, -10, 0, 2};  // left wrist
+  std::copy(wrist, wrist + 5, v.begin() + 15 * 5);
+  v[33 * 5] = 128, v[33 * 5 + 1] = 128;  // aux centre at the crop centre
+  v[34 * 5] = 128, v[34 * 5 + 1] = 28;   // aux scale point 100 crop px above
+  // WHEN decoded
+  const LandmarkOutput out = decode_pose_landmarks(v.data(), 0.9f, roi);
+  // THEN frame pixels: (300 + 2 (64 - 128), 200 + 2 (192 - 128)); z x 2; sigmoid(0) = 0.5, sigmoid(2) = 0.8808
+  ASSERT_TRUE(out.finite);
+  EXPECT_FLOAT_EQ(out.pose_flag, 0.9f);
+  EXPECT_NEAR(out.landmarks[15].x, 172, 1e-3);
+  EXPECT_NEAR(out.landmarks[15].y, 328, 1e-3);
+  EXPECT_NEAR(out.landmarks[15].z, -20, 1e-4);
+  EXPECT_NEAR(out.landmarks[15].visibility, 0.5f, 1e-6);
+  EXPECT_NEAR(out.landmarks[15].presence, 0.880797f, 1e-5);
+  EXPECT_NEAR(out.aux[0].x, 300, 1e-3);
+  EXPECT_NEAR(out.aux[1].y, 0, 1e-3);
+  // a NaN anywhere among the 35 points read (or in the flag): not finite
+  v[20 * 5 + 2] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(decode_pose_landmarks(v.data(), 0.9f, roi).finite);
+  v[20 * 5 + 2] = 0;
+  EXPECT_FALSE(decode_pose_landmarks(v.data(), std::numeric_limits<float>::infinity(), roi).finite);
 }
 
 TEST(PoseParams, DefaultsPassAndAnUnknownModelOrBadRangeIsRefusedByName) {
