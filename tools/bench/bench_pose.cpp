@@ -15,11 +15,7 @@ namespace {
 
 SyntheticFrame out_pose_frame() {
   const SyntheticWorld world(SyntheticParams{}, Scenario::load("tour"), 1);
-  const Scenario& s = world.scenario();
-  const auto times = s.key_times();
-  for (size_t i = 0; i < times.size(); ++i)
-    if (s.keyframes()[i].state.gesture == ground_truth_t::GESTURE_OUT) return world.render(times[i], 0, std::nullopt);
-  return world.render(0.0, 0, std::nullopt);
+  return world.render(world.scenario().key_time_of(ground_truth_t::GESTURE_OUT).value_or(0.0), 0, std::nullopt);
 }
 
 void BM_PoseDetector(benchmark::State& state) {
