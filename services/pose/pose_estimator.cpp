@@ -6,6 +6,8 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "box_iou.hpp"
+
 namespace gpilot {
 namespace {
 
@@ -15,12 +17,6 @@ constexpr float kMinRoiSide = 8.0f;
 
 bool finite_box(const cv::Rect2f& r) {
   return std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.width) && std::isfinite(r.height);
-}
-
-float iou(const cv::Rect2f& a, const cv::Rect2f& b) {
-  const float inter = (a & b).area();
-  const float uni = a.area() + b.area() - inter;
-  return uni > 0.0f ? inter / uni : 0.0f;
 }
 
 }  // namespace
@@ -41,7 +37,7 @@ std::optional<PersonDetection> choose_user_detection(const std::vector<PersonDet
     if (!gate.contains(hips)) continue;
     const cv::Point2f v = d.keypoints[person_keypoint::kBodyScale] - hips;
     const float half = std::sqrt(v.x * v.x + v.y * v.y);
-    const float overlap = iou(cv::Rect2f(hips.x - half, hips.y - half, 2 * half, 2 * half), user_box);
+    const float overlap = static_cast<float>(iou(cv::Rect2d(hips.x - half, hips.y - half, 2 * half, 2 * half), cv::Rect2d(user_box)));
     if (overlap > best_iou) best_iou = overlap, best = d;
   }
   return best;

@@ -3,12 +3,12 @@
 
 #include <algorithm>
 
+#include "box_iou.hpp"
+
 namespace gpilot {
 
 float face_iou(const PersonDetection& a, const PersonDetection& b) {
-  const float inter = (a.face & b.face).area();
-  const float uni = a.face.area() + b.face.area() - inter;
-  return uni > 0.0f ? inter / uni : 0.0f;
+  return static_cast<float>(iou(cv::Rect2d(a.face), cv::Rect2d(b.face)));
 }
 
 std::vector<PersonDetection> weighted_nms(std::vector<PersonDetection> detections, float iou_threshold) {
