@@ -12,7 +12,8 @@
 # And common/ knows no stage (gpilot_check_common): no file of common/ includes a header of services/ (a stage
 # declares its config sections next to its Params, services/system lists them), and the common libraries
 # do not get services/ on their include path.
-set(GPILOT_CORE_LIBRARIES gpilot_capture_core gpilot_tracker_core gpilot_hands_core gpilot_decide_core gpilot_flight_core)
+set(GPILOT_CORE_LIBRARIES gpilot_capture_core gpilot_tracker_core gpilot_hands_core gpilot_decide_core gpilot_flight_core
+    gpilot_pose_core)
 set(GPILOT_BUS_LIBRARIES gpilot_common)
 set(GPILOT_COMMON_DIR ${CMAKE_SOURCE_DIR}/common)
 set(GPILOT_SERVICES_DIR ${CMAKE_SOURCE_DIR}/services)

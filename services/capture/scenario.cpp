@@ -380,6 +380,13 @@ BystanderState Bystander::state_at(double t_s) const {
   return s;
 }
 
+std::optional<double> Scenario::key_time_of(int gesture) const {
+  const std::vector<double> times = key_times();
+  for (size_t k = 0; k < times.size(); ++k)
+    if (keyframes_[k].state.gesture == gesture) return times[k];
+  return std::nullopt;
+}
+
 std::vector<double> Scenario::key_times() const {
   std::vector<double> out;
   for (size_t k = 0; k < keyframes_.size(); ++k) {

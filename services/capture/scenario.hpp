@@ -53,6 +53,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -184,6 +185,8 @@ class Scenario {
 
   // One instant per keyframe at which its pose is fully reached and held: the script's key poses.
   std::vector<double> key_times() const;
+  // The first of those whose keyframe holds this gesture (ground_truth_t::GESTURE_*); nullopt if none does.
+  std::optional<double> key_time_of(int gesture) const;
 
  private:
   std::string name_, description_, origin_;

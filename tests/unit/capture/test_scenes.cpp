@@ -27,9 +27,7 @@ const SkinClassifier& skin() {
 
 // The first scenario time at which a keyframe with this gesture (and, if given, this predicate) is held.
 double time_of(const Scenario& s, int gesture) {
-  const auto times = s.key_times();
-  for (size_t i = 0; i < times.size(); ++i)
-    if (s.keyframes()[i].state.gesture == gesture) return times[i];
+  if (const auto t = s.key_time_of(gesture)) return *t;
   ADD_FAILURE() << s.name() << " has no " << gesture_name(gesture);
   return 0.0;
 }

@@ -24,10 +24,7 @@ const SyntheticWorld& tour_world() {
 
 // Scenario time at which the tour holds a gesture (the first keyframe with it).
 double tour_time_of(int gesture) {
-  const Scenario& s = tour_world().scenario();
-  const auto times = s.key_times();
-  for (size_t i = 0; i < times.size(); ++i)
-    if (s.keyframes()[i].state.gesture == gesture) return times[i];
+  if (const auto t = tour_world().scenario().key_time_of(gesture)) return *t;
   ADD_FAILURE() << "tour has no " << gesture_name(gesture);
   return 0.0;
 }

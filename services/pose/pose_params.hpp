@@ -1,0 +1,82 @@
+// Parameters of the pose core (BlazePose on cv::dnn): the models, MediaPipe's published detection, ROI and
+// smoothing constants (mediapipe/modules/pose_detection/pose_detection_cpu.pbtxt, pose_landmark/*.pbtxt), and
+// ours for seeding from the tracker's user box. Not a config section of its own: the hands stage nests it.
+#pragma once
+
+#include <string>
+
+#include "config_schema.hpp"
+
+namespace gpilot {
+
+// One Euro filter (Casiry, Roussel, Vogel, CHI 2012) as MediaPipe's LandmarksSmoothingCalculator runs it: the
+// speed is measured in object sizes per second (value scale = 1 / object scale), so the same motion of a near
+// and a far person is smoothed alike.
+struct OneEuroParams {
+  double min_cutoff = 0.1;       //!< Hz, cutoff at rest
+  double beta = 40.0;            //!< cutoff gain per unit of speed (object sizes per second)
+  double derivate_cutoff = 1.0;  //!< Hz, cutoff of the speed estimate
+
+  template <class V>
+  void visit(V& v) {
+    v("min_cutoff", min_cutoff, 1e-6, 1000.0, "cutoff at rest, Hz (lower: smoother, more lag)");
+    v("beta", beta, 0.0, 10000.0, "cutoff gain per unit speed, object sizes/s (higher: less lag when moving)");
+    v("derivate_cutoff", derivate_cutoff, 1e-6, 1000.0, "cutoff of the speed estimate, Hz");
+  }
+};
+
+// Landmark smoothing as pose_landmark_filtering.pbtxt: the 33 landmarks and, smoothed harder so the next crop
+// stays still, the two auxiliary points the next ROI is made from.
+struct PoseSmoothingParams {
+  bool enabled = true;
+  OneEuroParams landmarks;                       //!< MediaPipe: 0.1 Hz, 40, 1 Hz
+  OneEuroParams aux{0.01, 1.0, 1.0};             //!< MediaPipe: 0.01 Hz, 1, 1 Hz
+  double visibility_alpha = 0.1;                 //!< low-pass weight of a new visibility (MediaPipe 0.1; 1 = off)
+  double first_rate_hz = 30.0;                   //!< assumed frame rate until two frames give it (MediaPipe's default)
+
+  template <class V>
+  void visit(V& v) {
+    v("enabled", enabled, "smooth landmarks over frames (One Euro, MediaPipe's pose_landmark_filtering)");
+    v.group("landmarks", landmarks);
+    v.group("aux", aux);
+    v("visibility_alpha", visibility_alpha, 1e-6, 1.0, "low-pass weight of each new visibility/presence (1 = off; MediaPipe 0.1)");
+    v("first_rate_hz", first_rate_hz, 1.0, 1000.0, "frame rate assumed until two frames give it, Hz");
+  }
+};
+
+struct PoseParams {
+  std::string model = "lite";             //!< landmark model: lite (17 ms) or full (30 ms)
+  std::string models_dir = "models/pose";  //!< folder of the .onnx files, relative to the project root
+  int threads = 1;                        //!< cv::dnn threads (process-wide: cv::setNumThreads)
+  // Person detector (pose_detection_cpu.pbtxt and its calculators).
+  double detector_score_threshold = 0.5;  //!< sigmoid score a detection needs (MediaPipe pose 0.5)
+  double score_clipping = 100.0;          //!< raw score logits clipped to +-this before the sigmoid (MediaPipe 100)
+  double nms_iou_threshold = 0.3;         //!< weighted NMS merges detections overlapping more (MediaPipe 0.3)
+  // ROI (pose_detection_to_roi.pbtxt, pose_landmarks_to_roi.pbtxt): square of side 2 x |kp1 - kp0| x scale.
+  double roi_scale = 1.25;                //!< MediaPipe 1.25
+  double pose_flag_threshold = 0.5;       //!< pose flag below this: no pose, the detector runs next frame (MediaPipe 0.5)
+  // Seeding from the tracker's user box (ours): the detector looks at the box grown by seed_margin (so it sees
+  // the user whole, and no bystander beyond), and a tracked ROI whose centre (the hips) leaves the box grown by
+  // track_margin hands over to the detector.
+  double seed_margin = 0.25;              //!< detector region = user box grown by this share of its height, each side
+  double track_margin = 0.25;             //!< tracked hips outside the user box grown by this share of its size: detect
+  PoseSmoothingParams smoothing;
+
+  template <class V>
+  void visit(V& v) {
+    v("model", model, "landmark model: lite or full");
+    v("models_dir", models_dir, "folder of pose_detection.onnx and pose_landmark_<model>.onnx (relative: project root)");
+    v("threads", threads, 1, 64, "cv::dnn threads (process-wide)");
+    v("detector_score_threshold", detector_score_threshold, 0.0, 1.0, "person detector: score a detection needs (MediaPipe 0.5)");
+    v("score_clipping", score_clipping, 1.0, 1000.0, "person detector: score logits clipped to +-this (MediaPipe 100)");
+    v("nms_iou_threshold", nms_iou_threshold, 0.0, 1.0, "weighted NMS: detections overlapping more (IoU) are merged (MediaPipe 0.3)");
+    v("roi_scale", roi_scale, 0.5, 4.0, "landmark crop side / twice the alignment distance (MediaPipe 1.25)");
+    v("pose_flag_threshold", pose_flag_threshold, 0.0, 1.0, "pose flag below this: no pose, detect again (MediaPipe 0.5)");
+    v("seed_margin", seed_margin, 0.0, 5.0, "detector region: user box grown by this share of its height each side");
+    v("track_margin", track_margin, 0.0, 5.0, "tracked hip centre outside the user box grown by this share: detect again");
+    v.group("smoothing", smoothing);
+  }
+  void check(const ParamCheck& c) const { c.choice("model", model, {"lite", "full"}); }
+};
+
+}  // namespace gpilot
