@@ -143,17 +143,23 @@ std::string check_message(const user_track_t& m) {
 }
 
 std::string check_message(const hand_obs_t& m) {
+  bool visibility_ok = true;
+  for (const auto& l : m.pose_landmarks) visibility_ok = visibility_ok && l[3] >= 0 && l[3] <= 1;
   return first({check_enum("kind", m.kind, hand_obs_t::KIND_NONE, hand_obs_t::KIND_FRONT),
+                check_enum("method", m.method, hand_obs_t::METHOD_SKIN, hand_obs_t::METHOD_POSE),
                 check_enum("track_status", m.track_status, user_track_t::STATUS_SEARCHING, user_track_t::STATUS_LOST),
                 Finite()("user_box", m.user_box, 4)("shoulder_centre", m.shoulder_centre, 2)(
-                    "body_centre", m.body_centre, 2)("vector", m.vector, 2)("hand_box", m.hand_box, 4)
+                    "body_centre", m.body_centre, 2)("vector", m.vector, 2)("hand_box", m.hand_box, 4)(
+                    "pose_score", m.pose_score)("pose_landmarks", &m.pose_landmarks[0][0], 33 * 4)
                     .reason,
                 check_box("user_box", m.user_box), check_box("hand_box", m.hand_box),
                 check_image_size(m.image_width, m.image_height),
                 check_track_box("user_box", m.user_box, m.track_status, m.image_width, m.image_height),
                 m.hand_skin < 0 || m.skin_outside < 0 || m.skin_inside < 0 ? "negative skin count" : "",
                 m.skin_user_samples < 0 || m.skin_scene_samples < 0 ? "negative skin sample count" : "",
-                !(m.skin_changed >= 0 && m.skin_changed <= 1) ? "skin_changed not in 0..1" : ""});
+                !(m.skin_changed >= 0 && m.skin_changed <= 1) ? "skin_changed not in 0..1" : "",
+                !(m.pose_score >= 0 && m.pose_score <= 1) ? "pose_score not in 0..1" : "",
+                visibility_ok ? "" : "a pose landmark's visibility is not in 0..1"});
 }
 
 std::string check_message(const gesture_cmd_t& m) {

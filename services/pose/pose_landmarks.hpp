@@ -28,6 +28,16 @@ enum Index : int {
   kLeftHip = 23, kRightHip, kLeftKnee, kRightKnee, kLeftAnkle, kRightAnkle,
   kLeftHeel, kRightHeel, kLeftFootIndex, kRightFootIndex,
 };
+
+// The body's bones as drawn (MediaPipe's pose connections without the face's): pairs of landmark indices.
+constexpr std::array<std::array<int, 2>, 24> kBones{{
+    {kLeftShoulder, kRightShoulder}, {kLeftShoulder, kLeftHip}, {kRightShoulder, kRightHip}, {kLeftHip, kRightHip},
+    {kLeftShoulder, kLeftElbow}, {kLeftElbow, kLeftWrist}, {kRightShoulder, kRightElbow}, {kRightElbow, kRightWrist},
+    {kLeftWrist, kLeftPinky}, {kLeftWrist, kLeftIndex}, {kLeftPinky, kLeftIndex}, {kLeftWrist, kLeftThumb},
+    {kRightWrist, kRightPinky}, {kRightWrist, kRightIndex}, {kRightPinky, kRightIndex}, {kRightWrist, kRightThumb},
+    {kLeftHip, kLeftKnee}, {kLeftKnee, kLeftAnkle}, {kRightHip, kRightKnee}, {kRightKnee, kRightAnkle},
+    {kLeftAnkle, kLeftHeel}, {kLeftHeel, kLeftFootIndex}, {kRightAnkle, kRightHeel}, {kRightHeel, kRightFootIndex},
+}};
 }  // namespace pose_landmark
 
 }  // namespace gpilot

@@ -131,6 +131,10 @@ std::optional<cv::Rect2f> keypoint_face_box(const BodyKeypoints& k) {
 }
 
 PersonTruth person_truth(ArmTruth left, ArmTruth right) {
+  // The paper's gestures are made with one arm: two arms that both command (both out, both in front, one of
+  // each) are none of its gestures.
+  const auto commands = [](ArmTruth a) { return a == ArmTruth::Out || is_front(a); };
+  if (commands(left) && commands(right)) return PersonTruth::Ambiguous;
   if (left == ArmTruth::Out || right == ArmTruth::Out) return PersonTruth::Out;
   if (is_front(left) || is_front(right)) return PersonTruth::Front;
   if (left == ArmTruth::Rest && right == ArmTruth::Rest) return PersonTruth::Rest;
@@ -186,7 +190,8 @@ std::string keypoint_truth_rules() {
          "  4. REST:  W below the hip line.\n"
          "  5. AMBIGUOUS: anything else (reported, not scored).\n"
          "  Annotations with v < 2 on a shoulder, elbow, wrist or hip are skipped (counted).\n"
-         "Per person: OUT if any arm OUT; else FRONT if any arm FRONT; REST if both arms REST; else AMBIGUOUS.\n"
+         "Per person: AMBIGUOUS if both arms are OUT or FRONT (the paper's gestures are one-armed); else OUT if an arm\n"
+         "is OUT; FRONT if an arm is FRONT; REST if both arms REST; else AMBIGUOUS.\n"
          "Expected stage kind: OUT -> OUT, FRONT -> FRONT, REST -> NONE.\n";
 }
 

@@ -12,6 +12,9 @@ namespace {
 
 const cv::Scalar kHudBackground(32, 32, 32);
 const cv::Scalar kHudText(235, 235, 235);
+const cv::Scalar kSkeletonColour(255, 255, 0);  // cyan: apart from the paper's red marks and the truth's green
+// Landmarks the model thinks hidden below this are not drawn (where BlazePose itself stops drawing them).
+constexpr float kSkeletonMinVisibility = 0.5f;
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 std::string fmt(const char* f, double a) {
@@ -108,6 +111,17 @@ std::vector<std::string> hud_items(int64_t seq, const FrameMessages& m, const Hu
     items.push_back(s);
   }
   return items;
+}
+
+// The body landmarks of a HAND_OBS (pose method): the bones between landmarks seen with at least
+// kSkeletonMinVisibility, and a dot on each such joint.
+void draw_skeleton(cv::Mat& img, const hand_obs_t& h) {
+  const auto seen = [&](int i) { return h.pose_landmarks[i][3] >= kSkeletonMinVisibility; };
+  const auto at = [&](int i) { return cv::Point(static_cast<int>(std::lround(h.pose_landmarks[i][0])), static_cast<int>(std::lround(h.pose_landmarks[i][1]))); };
+  for (const auto& [a, b] : pose_landmark::kBones)
+    if (seen(a) && seen(b)) cv::line(img, at(a), at(b), kSkeletonColour, 1, cv::LINE_AA);
+  for (int i = pose_landmark::kLeftShoulder; i < kPoseLandmarkCount; ++i)
+    if (seen(i)) cv::circle(img, at(i), 2, kSkeletonColour, cv::FILLED, cv::LINE_AA);
 }
 
 void draw_truth(cv::Mat& img, const ground_truth_t& t) {
@@ -223,6 +237,9 @@ cv::Mat draw_overlay(const cv::Mat& frame, int64_t seq, const FrameMessages& m, 
   // The face the tracker's cascade found in this frame (start of a track, re-checks), thin.
   if (m.track && m.track->face_box[2] > 0 && m.track->face_box[3] > 0)
     cv::rectangle(img, to_rect(m.track->face_box), kMarkRed, 1, cv::LINE_8);
+
+  // The user's body (pose method): thin, under the paper's marks.
+  if (m.hand && m.hand->method == hand_obs_t::METHOD_POSE && m.hand->pose_score > 0) draw_skeleton(img, *m.hand);
 
   // Hand square.
   if (m.hand && m.hand->kind != hand_obs_t::KIND_NONE) {

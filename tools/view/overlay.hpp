@@ -4,7 +4,8 @@
 // What is drawn follows the paper's figures, in red: the user box (USER_TRACK), the hand square
 // (HAND_OBS), and the command of GESTURE_CMD from the shoulder centre p_uc (HAND_OBS): an arrow along the
 // hand vector for FINE/UP/DOWN, a cross for CLOSER, a small circle for FURTHER. Ours: a thin red face box
-// (USER_TRACK.face_box) on the frames where the tracker's cascade found the face. A HUD strip under the
+// (USER_TRACK.face_box) on the frames where the tracker's cascade found the face, and the user's skeleton in thin
+// cyan when the hands stage reads body landmarks (HAND_OBS of the pose method). A HUD strip under the
 // image gives mode, buffer counts, track state, vehicle position/yaw and per-stage rates.
 #pragma once
 
@@ -22,6 +23,7 @@
 #include "gpilot/hand_obs_t.hpp"
 #include "gpilot/user_track_t.hpp"
 #include "gpilot/vehicle_state_t.hpp"
+#include "pose/pose_landmarks.hpp"
 
 namespace gpilot {
 

@@ -82,11 +82,14 @@ TEST(KeypointTruth, GivenBentArmWristOverLowerTorsoWhenClassifiedThenFrontLow) {
   EXPECT_EQ(t.person, PersonTruth::Front);
 }
 
-TEST(KeypointTruth, GivenOneArmOutAndOneFrontWhenClassifiedThenPersonOut) {
+TEST(KeypointTruth, GivenOneArmOutAndOneFrontWhenClassifiedThenPersonAmbiguous) {
   BodyKeypoints k = upright();
   arm(k.left_elbow, k.left_wrist, {150, 100}, {180, 102});
   arm(k.right_elbow, k.right_wrist, {65, 140}, {95, 160});
-  EXPECT_EQ(keypoint_truth(k).person, PersonTruth::Out);
+  const PersonKeypointTruth t = keypoint_truth(k);
+  EXPECT_EQ(t.left.label, ArmTruth::Out);
+  EXPECT_TRUE(is_front(t.right.label));
+  EXPECT_EQ(t.person, PersonTruth::Ambiguous);
 }
 
 TEST(KeypointTruth, GivenBentArmWristBelowTheHipLineWhenClassifiedThenRest) {
@@ -158,6 +161,10 @@ TEST(KeypointTruth, GivenArmLabelsWhenCombinedThenThePersonRule) {
   EXPECT_EQ(person_truth(ArmTruth::Rest, ArmTruth::FrontHigh), PersonTruth::Front);
   EXPECT_EQ(person_truth(ArmTruth::Rest, ArmTruth::Rest), PersonTruth::Rest);
   EXPECT_EQ(person_truth(ArmTruth::Rest, ArmTruth::Ambiguous), PersonTruth::Ambiguous);
+  // Two commanding arms: none of the paper's one-armed gestures.
+  EXPECT_EQ(person_truth(ArmTruth::Out, ArmTruth::Out), PersonTruth::Ambiguous);
+  EXPECT_EQ(person_truth(ArmTruth::FrontHigh, ArmTruth::FrontLow), PersonTruth::Ambiguous);
+  EXPECT_EQ(person_truth(ArmTruth::Out, ArmTruth::FrontHigh), PersonTruth::Ambiguous);
 }
 
 TEST(KeypointTruth, GivenCocoNamesWhenFilledByNameThenEachPointInItsPlace) {

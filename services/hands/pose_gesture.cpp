@@ -1,0 +1,144 @@
+#include "hands/pose_gesture.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gpilot {
+
+namespace {
+
+namespace L = pose_landmark;
+
+double length(cv::Point2f v) { return std::hypot(static_cast<double>(v.x), static_cast<double>(v.y)); }
+
+// y of the line through a and b at x (a vertical line: their mean y).
+double line_y_at(cv::Point2f a, cv::Point2f b, double x) {
+  const double dx = static_cast<double>(b.x) - a.x;
+  if (std::abs(dx) < 1e-6) return (static_cast<double>(a.y) + b.y) / 2;
+  return a.y + (x - a.x) * (static_cast<double>(b.y) - a.y) / dx;
+}
+
+cv::Point2f at(const PoseLandmarks& lm, int i) { return {lm[i].x, lm[i].y}; }
+bool seen(const PoseLandmarks& lm, int i, double min_visibility) { return lm[i].visibility >= min_visibility; }
+
+// What the torso gives every arm's rules: its lines, centre, span and the face.
+struct Torso {
+  cv::Point2f left_shoulder, right_shoulder, left_hip, right_hip;
+  cv::Point2f shoulder_mid, body_centre;
+  double span_min_x = 0, span_max_x = 0;
+  cv::Point2f face;
+  double face_radius = 0;  //!< pixels
+};
+
+Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
+  Torso t;
+  t.left_shoulder = at(lm, L::kLeftShoulder);
+  t.right_shoulder = at(lm, L::kRightShoulder);
+  t.left_hip = at(lm, L::kLeftHip);
+  t.right_hip = at(lm, L::kRightHip);
+  t.shoulder_mid = (t.left_shoulder + t.right_shoulder) * 0.5f;
+  const cv::Point2f hip_mid = (t.left_hip + t.right_hip) * 0.5f;
+  t.body_centre = (t.shoulder_mid + hip_mid) * 0.5f;
+  const double torso_height = length(hip_mid - t.shoulder_mid);
+  const auto xs = {t.left_shoulder.x, t.right_shoulder.x, t.left_hip.x, t.right_hip.x};
+  t.span_min_x = std::min(xs) - p.span_margin * torso_height;
+  t.span_max_x = std::max(xs) + p.span_margin * torso_height;
+  // The face's centre: the mean of the nose, eyes and ears (0..8), whose landmarks the model places even when
+  // they are turned away (the wrist test needs a centre, not a visible face).
+  cv::Point2f sum;
+  for (int i = L::kNose; i <= L::kRightEar; ++i) sum += at(lm, i);
+  t.face = sum * (1.0f / static_cast<float>(L::kRightEar + 1));
+  t.face_radius = p.face_radius * length(t.left_shoulder - t.right_shoulder);
+  return t;
+}
+
+ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGestureParams& p, int shoulder, int elbow,
+                    int wrist, int pinky, int index) {
+  ArmReading a;
+  const cv::Point2f S = at(lm, shoulder), E = at(lm, elbow), W = at(lm, wrist);
+  const cv::Point2f knuckles = (at(lm, pinky) + at(lm, index)) * 0.5f;
+  a.hand = W + (knuckles - W) * static_cast<float>(p.hand_beyond_wrist);
+  if (!(seen(lm, shoulder, p.min_visibility) && seen(lm, elbow, p.min_visibility) && seen(lm, wrist, p.min_visibility)))
+    return a;  // Unseen
+  const double path = length(E - S) + length(W - E);
+  a.straightness = path > 0 ? length(W - S) / path : 0.0;
+  const cv::Point2f d = W - S;
+  a.from_down_deg = (d.x == 0 && d.y == 0) ? 0.0 : std::abs(std::atan2(static_cast<double>(d.x), static_cast<double>(d.y))) * 180.0 / M_PI;
+  const double shoulder_y = line_y_at(t.left_shoulder, t.right_shoulder, W.x);
+  const double hip_y = line_y_at(t.left_hip, t.right_hip, W.x);
+  const bool above_shoulders = W.y < shoulder_y, below_hips = W.y > hip_y;
+  const bool below_centre = W.y > t.body_centre.y;
+  const bool in_span = W.x >= t.span_min_x && W.x <= t.span_max_x;
+  const bool at_face = length(W - t.face) <= t.face_radius;
+  const bool straight = a.straightness >= p.out_min_straightness;
+  if (straight && (a.from_down_deg >= p.out_min_from_down_deg || above_shoulders))
+    a.pose = ArmPose::Out;
+  else if (straight && below_centre && a.from_down_deg <= p.rest_max_from_down_deg)
+    a.pose = ArmPose::Rest;  // a straight arm hanging
+  else if (in_span && !above_shoulders && !below_hips && !at_face)
+    a.pose = a.hand.y > t.body_centre.y ? ArmPose::FrontLow : ArmPose::FrontHigh;  // as the vector will say
+  else if (below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
+    a.pose = ArmPose::Rest;  // the hand down by the hips, the arm hanging
+  else
+    a.pose = ArmPose::Other;  // at the face, on the head, a bent arm raised
+  return a;
+}
+
+bool commands(ArmPose a) { return a == ArmPose::Out || a == ArmPose::FrontHigh || a == ArmPose::FrontLow; }
+
+}  // namespace
+
+const char* arm_pose_name(ArmPose a) {
+  switch (a) {
+    case ArmPose::Unseen: return "UNSEEN";
+    case ArmPose::Rest: return "REST";
+    case ArmPose::Out: return "OUT";
+    case ArmPose::FrontHigh: return "FRONT_HIGH";
+    case ArmPose::FrontLow: return "FRONT_LOW";
+    case ArmPose::Other: return "OTHER";
+  }
+  return "?";
+}
+
+PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p) {
+  PoseGesture g;
+  for (const float v : {lm[L::kLeftShoulder].x, lm[L::kRightShoulder].x, lm[L::kLeftHip].x, lm[L::kRightHip].x})
+    if (!std::isfinite(v)) return g;
+  const Torso t = torso_of(lm, p);
+  g.shoulder_centre = t.shoulder_mid;
+  g.body_centre = t.body_centre;
+  g.torso_seen = seen(lm, L::kLeftShoulder, p.min_visibility) && seen(lm, L::kRightShoulder, p.min_visibility) &&
+                 seen(lm, L::kLeftHip, p.min_visibility) && seen(lm, L::kRightHip, p.min_visibility);
+  if (!g.torso_seen) {
+    g.rule = "torso not seen";
+    return g;
+  }
+  g.left = read_arm(lm, t, p, L::kLeftShoulder, L::kLeftElbow, L::kLeftWrist, L::kLeftPinky, L::kLeftIndex);
+  g.right = read_arm(lm, t, p, L::kRightShoulder, L::kRightElbow, L::kRightWrist, L::kRightPinky, L::kRightIndex);
+  // The paper's gestures are made with one arm while the other does not command: two arms that both command (a
+  // T-pose, arms crossed on the chest, one out and one in front) are no command. A hand at the face or on the head
+  // or a bent arm raised (OTHER) commands nothing itself and does not stop the other arm's gesture.
+  const bool left_commands = commands(g.left.pose), right_commands = commands(g.right.pose);
+  if (left_commands && right_commands) {
+    g.rule = "both arms command";
+    return g;
+  }
+  if (!left_commands && !right_commands) {
+    g.rule = "no arm commands";
+    return g;
+  }
+  const ArmReading& arm = left_commands ? g.left : g.right;
+  g.hand = arm.hand;
+  if (arm.pose == ArmPose::Out) {
+    g.kind = HandKind::Out;
+    g.vector = arm.hand - g.shoulder_centre;
+    g.rule = "one arm out";
+  } else {
+    g.kind = HandKind::Front;
+    g.vector = arm.hand - g.body_centre;
+    g.rule = "one hand in front";
+  }
+  return g;
+}
+
+}  // namespace gpilot

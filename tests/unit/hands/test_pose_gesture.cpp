@@ -1,0 +1,152 @@
+// The paper's observation read from body landmarks: known poses of a person facing the camera, drawn by hand.
+// The person's left is the image's right. Shoulders at y 100, hips at y 200, shoulders 80 px apart.
+#include <gtest/gtest.h>
+
+#include "hands/pose_gesture.hpp"
+
+namespace gpilot {
+namespace {
+
+namespace L = pose_landmark;
+
+struct Arm {
+  cv::Point2f elbow, wrist;
+};
+
+// A person at x 320 with both arms hanging, every landmark visible; arms replaced by the tests.
+PoseLandmarks standing(Arm left = {{365, 150}, {368, 200}}, Arm right = {{275, 150}, {272, 200}}) {
+  PoseLandmarks lm{};
+  auto set = [&](int i, cv::Point2f p) { lm[i] = PoseLandmark{p.x, p.y, 0, 0.99f, 0.99f}; };
+  for (int i = L::kNose; i <= L::kMouthRight; ++i) set(i, {320, 60});
+  set(L::kLeftEar, {335, 58});
+  set(L::kRightEar, {305, 58});
+  set(L::kLeftShoulder, {360, 100});
+  set(L::kRightShoulder, {280, 100});
+  set(L::kLeftHip, {345, 200});
+  set(L::kRightHip, {295, 200});
+  set(L::kLeftElbow, left.elbow);
+  set(L::kRightElbow, right.elbow);
+  set(L::kLeftWrist, left.wrist);
+  set(L::kRightWrist, right.wrist);
+  // The knuckles a little beyond the wrist along the forearm.
+  for (auto [w, e, pinky, index] : {std::array<int, 4>{L::kLeftWrist, L::kLeftElbow, L::kLeftPinky, L::kLeftIndex},
+                                   std::array<int, 4>{L::kRightWrist, L::kRightElbow, L::kRightPinky, L::kRightIndex}}) {
+    const cv::Point2f W(lm[w].x, lm[w].y), E(lm[e].x, lm[e].y);
+    const cv::Point2f k = W + (W - E) * 0.2f;
+    set(pinky, k);
+    set(index, k);
+  }
+  for (int i = L::kLeftKnee; i < kPoseLandmarkCount; ++i) set(i, {320, 300});
+  return lm;
+}
+
+const Arm kRightOutToImageLeft{{230, 100}, {180, 100}};  // the person's right arm, horizontal
+const Arm kLeftOutToImageRight{{410, 100}, {460, 100}};
+const Arm kLeftUp{{362, 50}, {364, 0}};
+const Arm kRightFrontHigh{{285, 170}, {315, 130}};  // forearm across the chest, hand above p_bc (y 150)
+const Arm kRightFrontLow{{282, 175}, {318, 170}};
+const Arm kLeftFrontHigh{{355, 170}, {325, 130}};
+const Arm kRightAtFace{{280, 150}, {312, 70}};
+const Arm kLeftOnHead{{400, 60}, {350, 30}};
+const Arm kRightOnHead{{240, 60}, {290, 30}};
+
+TEST(PoseGesture, ArmsHangingIsNoCommand) {
+  const PoseGesture g = read_pose_gesture(standing(), PoseGestureParams{});
+  EXPECT_EQ(g.kind, HandKind::None);
+  EXPECT_EQ(g.left.pose, ArmPose::Rest);
+  EXPECT_EQ(g.right.pose, ArmPose::Rest);
+  EXPECT_EQ(g.shoulder_centre, cv::Point2f(320, 100));
+  EXPECT_EQ(g.body_centre, cv::Point2f(320, 150));
+}
+
+TEST(PoseGesture, TheUsersRightArmOutPointsToTheImagesLeftFromTheShoulderCentre) {
+  const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, kRightOutToImageLeft), PoseGestureParams{});
+  ASSERT_EQ(g.kind, HandKind::Out) << g.rule;
+  EXPECT_EQ(g.right.pose, ArmPose::Out);
+  // The hand's point: half way from the wrist (180) to the knuckles (170).
+  EXPECT_NEAR(g.vector.x, 175 - 320, 1e-3);
+  EXPECT_NEAR(g.vector.y, 0, 1e-3);
+  EXPECT_NEAR(g.hand.x, 175, 1e-3);
+}
+
+TEST(PoseGesture, AnArmRaisedIsOutPointingUp) {
+  const PoseGesture g = read_pose_gesture(standing(kLeftUp), PoseGestureParams{});
+  ASSERT_EQ(g.kind, HandKind::Out) << g.rule;
+  EXPECT_LT(g.vector.y, -100);
+  EXPECT_GT(g.vector.x, 0);
+  EXPECT_GT(-g.vector.y, 2 * g.vector.x);  // decide's lambda4 makes it straight UP
+}
+
+TEST(PoseGesture, AHandInFrontHighOrLowIsFrontFromTheBodyCentre) {
+  const PoseGesture high = read_pose_gesture(standing({{365, 150}, {368, 200}}, kRightFrontHigh), PoseGestureParams{});
+  ASSERT_EQ(high.kind, HandKind::Front) << high.rule;
+  EXPECT_LT(high.vector.y, 0);
+  EXPECT_NEAR(high.vector.y, high.hand.y - 150, 1e-3);
+  const PoseGesture low = read_pose_gesture(standing({{365, 150}, {368, 200}}, kRightFrontLow), PoseGestureParams{});
+  ASSERT_EQ(low.kind, HandKind::Front) << low.rule;
+  EXPECT_GT(low.vector.y, 0);
+}
+
+TEST(PoseGesture, TwoArmsThatDisagreeAreNoCommand) {
+  struct Case {
+    const char* what;
+    Arm left, right;
+    const char* rule;
+  };
+  const Case cases[] = {
+      {"T-pose", kLeftOutToImageRight, kRightOutToImageLeft, "both arms command"},
+      {"arms crossed on the chest", kLeftFrontHigh, kRightFrontHigh, "both arms command"},
+      {"one out, one in front", kLeftOutToImageRight, kRightFrontLow, "both arms command"},
+      {"hands on the head", kLeftOnHead, kRightOnHead, "no arm commands"},
+      {"a hand on the head, the other hanging", kLeftOnHead, {{275, 150}, {272, 200}}, "no arm commands"},
+  };
+  for (const Case& c : cases) {
+    const PoseGesture g = read_pose_gesture(standing(c.left, c.right), PoseGestureParams{});
+    EXPECT_EQ(g.kind, HandKind::None) << c.what;
+    EXPECT_STREQ(g.rule, c.rule) << c.what;
+    EXPECT_EQ(g.vector, cv::Point2f()) << c.what;
+  }
+}
+
+TEST(PoseGesture, AHandAtTheFaceIsNotTheFrontGestureAndDoesNotStopTheOtherArm) {
+  const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, kRightAtFace), PoseGestureParams{});
+  EXPECT_EQ(g.right.pose, ArmPose::Other);
+  EXPECT_EQ(g.kind, HandKind::None);
+  const PoseGesture out = read_pose_gesture(standing(kLeftOutToImageRight, kRightAtFace), PoseGestureParams{});
+  EXPECT_EQ(out.kind, HandKind::Out);
+  EXPECT_GT(out.vector.x, 100);
+  const PoseGesture front = read_pose_gesture(standing(kLeftOnHead, kRightFrontLow), PoseGestureParams{});
+  EXPECT_EQ(front.kind, HandKind::Front);
+}
+
+TEST(PoseGesture, AnArmOutOfSightLeavesTheOtherToCommandButATorsoOutOfSightGivesNothing) {
+  PoseLandmarks lm = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
+  lm[L::kLeftWrist].visibility = 0.2f;
+  const PoseGesture g = read_pose_gesture(lm, PoseGestureParams{});
+  EXPECT_EQ(g.left.pose, ArmPose::Unseen);
+  EXPECT_EQ(g.kind, HandKind::Out);
+  lm[L::kRightHip].visibility = 0.2f;
+  const PoseGesture no_torso = read_pose_gesture(lm, PoseGestureParams{});
+  EXPECT_FALSE(no_torso.torso_seen);
+  EXPECT_EQ(no_torso.kind, HandKind::None);
+}
+
+TEST(PoseGesture, ABentArmIsNotOutAndTheStraightnessLimitDecides) {
+  // The right arm out with the elbow dropped: straightness 100 / (2 x 61.03) = 0.82.
+  const Arm bent{{230, 135}, {180, 100}};
+  const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, bent), PoseGestureParams{});
+  EXPECT_NEAR(g.right.straightness, 100.0 / (2 * std::hypot(50.0, 35.0)), 1e-6);
+  EXPECT_NE(g.right.pose, ArmPose::Out);
+  PoseGestureParams lenient;
+  lenient.out_min_straightness = 0.8;
+  EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, bent), lenient).kind, HandKind::Out);
+}
+
+TEST(PoseGesture, NonFiniteLandmarksGiveNothing) {
+  PoseLandmarks lm = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
+  lm[L::kLeftShoulder].x = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(read_pose_gesture(lm, PoseGestureParams{}).kind, HandKind::None);
+}
+
+}  // namespace
+}  // namespace gpilot
