@@ -8,8 +8,8 @@
 
 namespace gpilot {
 
-HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior, const BodyProportions& body)
-    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior), body_(body) {}
+HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior)
+    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior) {}
 
 void HandObserver::reset() {
   adapter_.reset();
@@ -25,7 +25,7 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
   }
   const HandsParams& p = detector_.params();
   const bool face = user.face && user.face->width >= 1 && user.face->height >= 1;
-  const cv::Rect2f box = face && p.box_from_face ? cv::Rect2f(body_from_face(*user.face, body_)) : user.box;
+  const cv::Rect2f& box = user.box;
   if (!has_colour(bgr, p.skin)) {  // a grey frame teaches the models nothing and can show no skin
     HandResult none;
     none.geometry = hand_geometry(p, box, bgr.size());
@@ -34,14 +34,13 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
   }
   if (face) adapter_.learn_user(bgr, *user.face);
   // The face: given, or the last one carried along with the box (the tracker gives it about once a second).
-  const cv::Rect2f& ub = user.box;
-  const bool box_ok = ub.width > 0 && ub.height > 0 && std::isfinite(ub.x) && std::isfinite(ub.y);
+  const bool box_ok = box.width > 0 && box.height > 0 && std::isfinite(box.x) && std::isfinite(box.y);
   std::optional<cv::Rect2f> face_now;
   if (face) {
     face_now = *user.face;
-    if (box_ok) last_face_ = FaceWithBox{*user.face, ub};
+    if (box_ok) last_face_ = FaceWithBox{*user.face, box};
   } else if (last_face_ && box_ok) {
-    face_now = cv::Rect2f(carried_with_box(last_face_->face, last_face_->box, ub));
+    face_now = cv::Rect2f(carried_with_box(last_face_->face, last_face_->box, box));
   }
   const HandGeometry g = hand_geometry(p, box, bgr.size(), face_now);
   if (g.valid) {

@@ -34,11 +34,10 @@ struct SkinAdaptation {
 class HandObserver {
  public:
   // Throws SkinModelError for an empty model (or one without likelihoods while hands.skin.adapt is on).
-  // body: the head-body ratios that make a box from a face (the tracker's).
-  HandObserver(const HandsParams& params, const SkinModel& prior, const BodyProportions& body = {});
+  HandObserver(const HandsParams& params, const SkinModel& prior);
 
   // Learns from this frame (user skin from the face, the scene outside the search rectangle), then detects on
-  // the user box (or the box the face implies, hands.box_from_face). bgr: CV_8UC3. A frame without colour
+  // the user box as given (the tracker's: the one body box from the tracker to decide). bgr: CV_8UC3. A frame without colour
   // (hands.skin.min_colour_fraction) gives NONE with `colourless` set, and nothing is learnt from it.
   HandResult observe(const cv::Mat& bgr, const UserView& user);
   // Forgets the user and the scene (the trained table alone again).
@@ -56,7 +55,6 @@ class HandObserver {
  private:
   HandDetector detector_;
   SkinAdapter adapter_;
-  BodyProportions body_;
   int32_t track_id_ = -1;
   //! The last face given for this track and the box it came with: carried along with the box (carried_with_box)
   //! on frames without one.

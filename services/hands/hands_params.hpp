@@ -148,10 +148,6 @@ struct HandsParams {
                                   //!< and close, the hips below the frame): Alg. 2 judges no hand in front (a resting
                                   //!< hand at the bottom edge is "higher"), and Alg. 1 no hand below the shoulders
                                   //!< whose square the image border cuts (a resting hand, or scenery, at the cut edge)
-  // The face the tracker found is the surest reference on real people (a person box may hold stretched-out
-  // arms or end at the image edge): when one is given, the box the stage works on is made from it with the
-  // tracker's head-body ratios (tracker.body_*_in_faces).
-  bool box_from_face = true;
 
   template <class V>
   void visit(V& v) {
@@ -185,7 +181,6 @@ struct HandsParams {
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
     v("front_max_hand_areas", front_max_hand_areas, 0.0, 1000.0, "Alg. 2: skin component of more hand squares is the torso, dropped (0 = off; ours)");
     v("needs_body_centre", needs_body_centre, "body centre out of the image: no FRONT hand, no OUT hand below the shoulders cut by the border (ours)");
-    v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }
   void check(const ParamCheck& c) const {
     // The face/neck band and the legs band are cut from the same box: together they must leave some of it.

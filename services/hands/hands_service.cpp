@@ -113,8 +113,7 @@ std::string hands_on_pair(HandObserver& observer, const image_t& frame, const us
 
 std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   struct State {
-    State(const HandsParams& p, const std::string& model, const BodyProportions& body)
-        : observer(p, SkinModel::load(model), body), pairer(p.match_window) {}
+    State(const HandsParams& p, const std::string& model) : observer(p, SkinModel::load(model)), pairer(p.match_window) {}
     HandObserver observer;
     SeqPairer<ArrivedFrame, user_track_t> pairer;
     // Buffers of frames already observed, lent back to the bus to receive the next frame into, and to decode it
@@ -127,7 +126,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   };
   const auto params = config.section<HandsParams>("hands");
   const std::string model_path = resolve_project_path(params.skin.model);
-  auto state = std::make_shared<State>(params, model_path, config.section<TrackerParams>("tracker").body());
+  auto state = std::make_shared<State>(params, model_path);
   auto& observer = state->observer;
   auto& pairer = state->pairer;
   auto& frames_dropped = state->frames_dropped;

@@ -19,8 +19,7 @@ namespace {
 gpilot::HandObserver& observer() {
   static gpilot::HandObserver o = [] {
     const gpilot::HandsParams p;
-    return gpilot::HandObserver(p, gpilot::SkinModel::load(gpilot::resolve_project_path(p.skin.model)),
-                                gpilot::TrackerParams{}.body());
+    return gpilot::HandObserver(p, gpilot::SkinModel::load(gpilot::resolve_project_path(p.skin.model)));
   }();
   return o;
 }

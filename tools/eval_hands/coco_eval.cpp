@@ -29,8 +29,7 @@ std::string png_name(const CocoImage& im, int64_t annotation_id, BoxMode mode) {
 
 HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands, const TrackerParams& tracker) {
   const CocoKeypointFile coco = CocoKeypointFile::load(o.annotations);
-  // The tracker's head-body ratios: with hands.box_from_face the stage works on the box a given face implies.
-  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), tracker.body());
+  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)));
   UserViewChooser chooser(tracker, o.box);
   std::unique_ptr<PersonCsv> csv;
   if (!o.csv_path.empty()) csv = std::make_unique<PersonCsv>(o.csv_path);

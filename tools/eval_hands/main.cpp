@@ -28,14 +28,14 @@ int main(int argc, char** argv) {
                  "  a few annotated PNGs (skin in red, hand square, vector).\n"
                  "--coco ANNOTATIONS.json --images DIR: every annotated person of real photos (COCO person keypoints),\n"
                  "  one fresh HandObserver start per person, with\n"
-                 "  --box annotation: the annotation's bbox; face = the largest Haar face in the tracker's face re-check\n"
-                 "                    window of that box, or none;\n"
+                 "  --box annotation: the largest Haar face in the tracker's face re-check window of the annotation's bbox,\n"
+                 "                    and the body box the tracker makes from it (body_from_face, section tracker); no\n"
+                 "                    face there: the annotation's bbox itself;\n"
                  "  --box face: the body box the tracker would make (body_from_face, section tracker) from the Haar face\n"
                  "              found in the person's head region (nose/eyes/ears); no face: counted, not scored.\n"
                  "  --box keypoints: the same from the face box the nose/eyes/ears keypoints span (the hands stage apart\n"
                  "              from face finding: a tracker that never misses a face).\n"
-                 "  The face goes to the stage too: with hands.box_from_face on, the stage itself works on the box the face\n"
-                 "  implies (--set hands.box_from_face=false keeps the annotation box in --box annotation).\n"
+                 "  The face goes to the stage too (its skin, the neck below it); the stage works on the box as given.\n"
                  "  Scores: OUT found and its angle error (stage hand - p_uc vs truth wrist - p_uc, p_uc = the stage's own\n"
                  "  shoulder centre); FRONT found and HIGH/LOW right (stage hand - p_bc, y < 0 = HIGH, vs truth wrist\n"
                  "  above/below the torso centre); false hands on REST persons; kind accuracy over scored persons.\n"
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
     const auto hands = config.section<HandsParams>("hands");
     const std::string box_description = coco.box == BoxMode::Face        ? "body_from_face of the Haar face on the person's head keypoints"
                                         : coco.box == BoxMode::Keypoints ? "body_from_face of the face box the head keypoints span"
-                                                                         : "COCO annotation bbox";
+                                                                         : "body_from_face of the Haar face in the COCO annotation bbox's re-check window, else that bbox";
     const HandsScoreboard board = run_coco_eval(coco, hands, config.section<TrackerParams>("tracker"));
     if (json) {
       const nlohmann::json context = {{"mode", "coco"},
@@ -110,7 +110,6 @@ int main(int argc, char** argv) {
                                       {"images", coco.images_dir},
                                       {"box", box},
                                       {"user_box", box_description},
-                                      {"hands_box_from_face", hands.box_from_face},
                                       {"truth", "keypoint_truth rules (gpilot-eval-hands --help)"}};
       std::cout << board.to_json(context).dump() << std::endl;
     } else {

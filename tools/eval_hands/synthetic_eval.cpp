@@ -35,7 +35,7 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
   rules.hands = hands;
   const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(o.scenario), o.seed, rules);
   const std::string model_path = resolve_project_path(hands.skin.model);
-  HandObserver observer(hands, SkinModel::load(model_path), rules.tracker.body());
+  HandObserver observer(hands, SkinModel::load(model_path));
 
   const double fps = world.params().fps;
   const int64_t frames = static_cast<int64_t>(std::floor(world.scenario().duration_s() * fps));

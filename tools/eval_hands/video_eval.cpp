@@ -133,7 +133,7 @@ int run_video_eval(const VideoEvalOptions& o, const Config& config) {
     if (!why.empty()) throw std::runtime_error("--init-box: " + why);
   }
   const auto hands = config.section<HandsParams>("hands");
-  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), tracker_params.body());
+  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)));
   GestureDecider decider(config.section<DecideParams>("decide"));
   const auto limits = config.section<ImageLimits>("image");
 

@@ -24,7 +24,7 @@ double kind_accuracy(const std::string& scenario, const HandsParams& hands) {
   rules.tracker = config.section<TrackerParams>("tracker");
   rules.hands = hands;
   const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), 1, rules);
-  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), rules.tracker.body());
+  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)));
   const double fps = world.params().fps;
   const int frames = static_cast<int>(world.scenario().duration_s() * fps);
   const int stride = 5, recheck = rules.tracker.face_recheck_frames;
@@ -48,7 +48,6 @@ HandsParams papers_stage() {
   p.arm_connected = false;
   p.front_max_upright = 0;
   p.front_max_hand_areas = 0;
-  p.box_from_face = false;
   return p;
 }
 
