@@ -94,6 +94,7 @@ struct SkinParams {
 };
 
 struct HandsParams {
+  std::string method = "skin";      //!< the hands method (hands_core_factory.hpp): skin, the paper's Alg. 1/2 on a skin table
   SkinParams skin;
   // Search rectangle: the user box extended sideways and up, so that a stretched-out arm is inside it.
   double roi_extend_side = 1.2;     //!< added on each side, in user box widths: an arm's reach (shoulder
@@ -151,6 +152,7 @@ struct HandsParams {
 
   template <class V>
   void visit(V& v) {
+    v("method", method, "hands method: skin (the paper's Alg. 1/2 on a skin table)");
     v.group("skin", skin);
     v("roi_extend_side", roi_extend_side, 0.0, 10.0, "search rectangle: added each side, user box widths");
     v("roi_extend_top", roi_extend_top, 0.0, 5.0, "search rectangle: added above, user box heights");
@@ -183,6 +185,7 @@ struct HandsParams {
     v("needs_body_centre", needs_body_centre, "body centre out of the image: no FRONT hand, no OUT hand below the shoulders cut by the border (ours)");
   }
   void check(const ParamCheck& c) const {
+    c.choice("method", method, {"skin"});
     // The face/neck band and the legs band are cut from the same box: together they must leave some of it.
     c.require(face_remove_ratio + legs_remove_ratio < 1.0, "legs_remove_ratio",
               "face_remove_ratio + legs_remove_ratio = " +

@@ -22,12 +22,12 @@ using namespace gpilot;
 
 int main(int argc, char** argv) {
   ServiceCli cli("gpilot-eval-hands",
-                 "Scores the hands stage (skin + Alg. 1/2, through HandObserver) apart from the tracker.\n"
+                 "Scores the hands stage (hands.method, built as the service builds it) apart from the tracker.\n"
                  "--scenario NAME (default): a synthetic scenario against its ground truth, with the TRUE user box and the true face on the\n  frames the tracker would hand it over (the first, then every tracker.face_recheck_frames):\n"
                  "  kind accuracy and confusion matrix, OUT angle and length error, FRONT higher/lower success, ms per frame;\n"
                  "  a few annotated PNGs (skin in red, hand square, vector).\n"
                  "--coco ANNOTATIONS.json --images DIR: every annotated person of real photos (COCO person keypoints),\n"
-                 "  one fresh HandObserver start per person, with\n"
+                 "  one fresh start of the method per person, with\n"
                  "  --box annotation: the largest Haar face in the tracker's face re-check window of the annotation's bbox,\n"
                  "                    and the body box the tracker makes from it (body_from_face, section tracker); no\n"
                  "                    face there: the annotation's bbox itself;\n"

@@ -24,7 +24,7 @@ struct PersonCsvRow {
   std::string note;
   const PersonKeypointTruth* truth = nullptr;  //!< may be null (image unreadable)
   std::optional<cv::Rect2f> box, face;
-  const HandResult* result = nullptr;          //!< null when the stage did not run
+  const HandsOutput* result = nullptr;          //!< null when the stage did not run
   const PersonScore* score = nullptr;
 };
 

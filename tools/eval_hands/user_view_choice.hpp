@@ -15,7 +15,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "hands/hand_observer.hpp"
+#include "hands/hand_method.hpp"
 #include "keypoint_truth.hpp"
 #include "tracker/face_detector.hpp"
 #include "tracker/tracker_params.hpp"

@@ -9,10 +9,9 @@
 
 #include "body_proportions.hpp"
 #include "decide/decide_service.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/hands_core_factory.hpp"
 #include "hands/hands_service.hpp"
 #include "image_codec.hpp"
-#include "paths.hpp"
 
 using namespace gpilot;
 
@@ -35,7 +34,7 @@ TEST(HandObsBox, GivenAFaceWhoseFittedRatiosDifferFromThePresetWhenObservedThenA
   cv::rectangle(frame, cv::Rect(230, 130, 18, 18), kSkin, cv::FILLED);
   HandsParams p;
   p.arm_connected = false;  // no arm drawn: the box is what is tested here
-  HandObserver observer(p, SkinModel::load(resolve_project_path(p.skin.model)));
+  const auto method = make_hand_method(p);
   user_track_t track{};
   track.seq = 7;
   track.status = user_track_t::STATUS_TRACKING;
@@ -47,7 +46,7 @@ TEST(HandObsBox, GivenAFaceWhoseFittedRatiosDifferFromThePresetWhenObservedThenA
   const image_t image = mat_to_image(frame, 1000, 7);
   // WHEN the stage takes the pair
   hand_obs_t obs;
-  ASSERT_EQ(hands_on_pair(observer, image, track, ImageLimits{}, obs), "");
+  ASSERT_EQ(hands_on_pair(*method, image, track, ImageLimits{}, obs), "");
   // THEN the box published is the tracker's
   for (int i = 0; i < 4; ++i) EXPECT_EQ(obs.user_box[i], track.box[i]);
   // AND p_uc, p_bc are that box's (centre x; 0.2 and 0.5 of its height down), not the preset box's (y 144.8, 212)

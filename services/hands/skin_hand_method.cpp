@@ -1,23 +1,25 @@
-#include "hand_observer.hpp"
+#include "skin_hand_method.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
+#include "body_proportions.hpp"
 #include "hands/colour_check.hpp"
 
 namespace gpilot {
 
-HandObserver::HandObserver(const HandsParams& params, const SkinModel& prior)
-    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior) {}
+SkinHandMethod::SkinHandMethod(const HandsParams& params, const SkinModel& prior, std::string model_path)
+    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior), model_path_(std::move(model_path)) {}
 
-void HandObserver::reset() {
+void SkinHandMethod::reset() {
   adapter_.reset();
+  judged_with_ = nullptr;
   track_id_ = -1;
   last_face_.reset();
 }
 
-HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
+HandResult SkinHandMethod::detect(const cv::Mat& bgr, const UserView& user) {
   CV_Assert(bgr.type() == CV_8UC3);
   if (user.track_id != track_id_) {
     reset();
@@ -53,7 +55,29 @@ HandResult HandObserver::observe(const cv::Mat& bgr, const UserView& user) {
     adapter_.learn_scene(bgr, exclude);
     adapter_.learn_clothing(bgr, torso_rect(p, g));
   }
-  return detector_.detect(bgr, box, &adapter_.classifier(), face_now);
+  judged_with_ = &adapter_.classifier();
+  return detector_.detect(bgr, box, judged_with_, face_now);
+}
+
+HandsOutput SkinHandMethod::observe(const cv::Mat& bgr, const UserView& user, int64_t /*utime*/) {
+  HandResult r;
+  if (user.tracking) r = detect(bgr, user);
+  else r.geometry = hand_geometry(params(), user.box, bgr.size());
+  HandsOutput out;
+  out.kind = r.kind;
+  out.vector = r.vector;
+  out.hand = cv::Point2f(r.hand);
+  out.hand_box = r.hand_box;
+  out.shoulder_centre = r.geometry.shoulder_centre;
+  out.body_centre = r.geometry.body_centre;
+  out.user_box = user.box;
+  if (r.colourless)
+    out.refused = "skin needs colour, the frame has none (a monochrome or infrared camera, or a greyscale video?): fewer "
+                  "than hands.skin.min_colour_fraction of its pixels differ in B, G, R by hands.skin.min_chroma";
+  const bool detected = user.tracking && !r.colourless;
+  out.skin = SkinDiagnostics{r, adaptation(), detected ? last_mask() : cv::Mat(), detected ? last_roi() : cv::Rect(),
+                             judged_with_ ? judged_with_ : &detector_.classifier()};
+  return out;
 }
 
 }  // namespace gpilot

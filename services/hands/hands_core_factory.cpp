@@ -1,0 +1,18 @@
+#include "hands_core_factory.hpp"
+
+#include "config.hpp"
+#include "hands/skin_hand_method.hpp"
+#include "hands/skin_model.hpp"
+#include "paths.hpp"
+
+namespace gpilot {
+
+std::unique_ptr<HandMethod> make_hand_method(const HandsParams& params) {
+  if (params.method == "skin") {
+    const std::string model_path = resolve_project_path(params.skin.model);
+    return std::make_unique<SkinHandMethod>(params, SkinModel::load(model_path), model_path);
+  }
+  throw ConfigError("hands.method: '" + params.method + "' is not a method this build has (skin)");
+}
+
+}  // namespace gpilot
