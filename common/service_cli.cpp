@@ -73,6 +73,15 @@ int ServiceCli::run(int argc, char** argv, const std::function<int(const Config&
 
 int ServiceCli::run_node(int argc, char** argv, const std::function<int(const Config&, BusNode&)>& body) {
   return run(argc, argv, [&](const Config& config) {
+    if (before_bus_) {
+      try {
+        before_bus_(config);
+      } catch (const ConfigError&) {
+        throw;
+      } catch (const std::exception& e) {
+        throw ConfigError(e.what());
+      }
+    }
     BusNode node(name_, resolve_lcm_url(lcm_url_), config.section<BusParams>("bus"));
     // What this process runs with, once, so that a log of the run replays with it (gpilot-replay).
     config_t c{};

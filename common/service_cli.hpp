@@ -25,6 +25,9 @@ class ServiceCli {
   // Parses argv, loads the config, then calls body without a bus (tools) or with one (services).
   int run(int argc, char** argv, const std::function<int(const Config&)>& body);
   int run_node(int argc, char** argv, const std::function<int(const Config&, BusNode&)>& body);
+  // What run_node does with the config before the bus starts (a stage's models loaded): whatever it throws
+  // stops the process as a bad config does (status 2, the error named), before anything is sent.
+  void before_bus(std::function<void(const Config&)> prepare) { before_bus_ = std::move(prepare); }
 
   const std::string& name() const { return name_; }
   const std::string& lcm_url() const { return lcm_url_; }
@@ -38,6 +41,7 @@ class ServiceCli {
   std::vector<std::string> sets_;
   std::string lcm_url_;
   std::string log_level_;
+  std::function<void(const Config&)> before_bus_;
 };
 
 // What --version prints after the program's name: `git describe --always --dirty` at build time, or the

@@ -71,7 +71,7 @@ struct HandResult {
   int armless_dropped = 0;       //!< Alg. 1 candidates dropped: no arm from the shoulder to them
   int upright_dropped = 0;       //!< Alg. 2 candidates dropped: a forearm hanging at the torso's edge
   bool front_out_of_view = false;  //!< Alg. 2 found a hand but the body centre is out of the image: not judged
-  bool colourless = false;         //!< the frame has no colour (HandObserver, colour_check.hpp): nothing learnt or looked for
+  bool colourless = false;         //!< the frame has no colour (SkinHandMethod, colour_check.hpp): nothing learnt or looked for
 };
 
 class HandDetector {
@@ -91,6 +91,8 @@ class HandDetector {
   const cv::Mat& last_mask() const { return mask_; }
   cv::Rect last_roi() const { return last_roi_; }
   const HandsParams& params() const { return params_; }
+  // The trained table's classifier (the one detect() uses when given none).
+  const SkinClassifier& classifier() const { return skin_; }
 
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);

@@ -1,14 +1,15 @@
-// Draws a hand result onto a frame for people to look at: skin in red (as the paper's figure), the search
-// rectangle, the removed face/neck and legs bands, the user box, p_uc and p_bc, the hand square and the vector.
+// Draws a hands observation onto a frame for people to look at: the user box, p_uc and p_bc, the hand square and
+// the vector; with the skin method's part, skin in red (as the paper's figure), the search rectangle and the
+// removed face/neck and legs bands.
 #pragma once
 
 #include <opencv2/core.hpp>
 
-#include "hands/hand_detector.hpp"
+#include "hands/hand_method.hpp"
 
 namespace gpilot {
 
-// img: CV_8UC3, drawn on in place. skin_mask: 0/1 over roi (HandDetector::last_mask/last_roi), may be empty.
-void draw_hand_overlay(cv::Mat& img, const HandResult& result, const cv::Mat& skin_mask, const cv::Rect& roi);
+// img: CV_8UC3, drawn on in place.
+void draw_hand_overlay(cv::Mat& img, const HandsOutput& result);
 
 }  // namespace gpilot

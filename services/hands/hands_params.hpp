@@ -1,9 +1,12 @@
-// Parameters of gpilot-hands (section `hands`): skin model, search rectangle, and the paper's Alg. 1 and 2.
+// Parameters of gpilot-hands (section `hands`): the method (pose or the paper's skin), the body-pose model and
+// the rules that read the paper's gestures from it, and for skin: the skin model, search rectangle, Alg. 1 and 2.
 #pragma once
 
 #include <string>
 
 #include "config_schema.hpp"
+#include "hands/pose_gesture_params.hpp"
+#include "pose/pose_params.hpp"
 
 namespace gpilot {
 
@@ -94,6 +97,11 @@ struct SkinParams {
 };
 
 struct HandsParams {
+  //! the hands method (hands_core_factory.hpp): pose, the user's body landmarks (BlazePose) read by pose_gesture;
+  //! skin, the paper's Alg. 1/2 on a skin table
+  std::string method = "pose";
+  PoseParams pose;                  //!< the pose method's models, detector, tracking and smoothing
+  PoseGestureParams pose_gesture;   //!< the pose method's rules: which arm commands, and how
   SkinParams skin;
   // Search rectangle: the user box extended sideways and up, so that a stretched-out arm is inside it.
   double roi_extend_side = 1.2;     //!< added on each side, in user box widths: an arm's reach (shoulder
@@ -148,13 +156,12 @@ struct HandsParams {
                                   //!< and close, the hips below the frame): Alg. 2 judges no hand in front (a resting
                                   //!< hand at the bottom edge is "higher"), and Alg. 1 no hand below the shoulders
                                   //!< whose square the image border cuts (a resting hand, or scenery, at the cut edge)
-  // The face the tracker found is the surest reference on real people (a person box may hold stretched-out
-  // arms or end at the image edge): when one is given, the box the stage works on is made from it with the
-  // tracker's head-body ratios (tracker.body_*_in_faces).
-  bool box_from_face = true;
 
   template <class V>
   void visit(V& v) {
+    v("method", method, "hands method: pose (body landmarks) or skin (the paper's Alg. 1/2 on a skin table)");
+    v.group("pose", pose);
+    v.group("pose_gesture", pose_gesture);
     v.group("skin", skin);
     v("roi_extend_side", roi_extend_side, 0.0, 10.0, "search rectangle: added each side, user box widths");
     v("roi_extend_top", roi_extend_top, 0.0, 5.0, "search rectangle: added above, user box heights");
@@ -185,9 +192,9 @@ struct HandsParams {
     v("front_max_upright", front_max_upright, 0.0, 100.0, "Alg. 2: taller/wide ratio of a hanging forearm's skin, dropped (0 = off; ours)");
     v("front_max_hand_areas", front_max_hand_areas, 0.0, 1000.0, "Alg. 2: skin component of more hand squares is the torso, dropped (0 = off; ours)");
     v("needs_body_centre", needs_body_centre, "body centre out of the image: no FRONT hand, no OUT hand below the shoulders cut by the border (ours)");
-    v("box_from_face", box_from_face, "make the box from the tracker's face (head-body ratios) when USER_TRACK has one");
   }
   void check(const ParamCheck& c) const {
+    c.choice("method", method, {"pose", "skin"});
     // The face/neck band and the legs band are cut from the same box: together they must leave some of it.
     c.require(face_remove_ratio + legs_remove_ratio < 1.0, "legs_remove_ratio",
               "face_remove_ratio + legs_remove_ratio = " +

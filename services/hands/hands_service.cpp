@@ -11,12 +11,11 @@
 
 #include "bus_node.hpp"
 #include "hands/hands_service.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/hands_core_factory.hpp"
 #include "hands/hands_channels.hpp"
 #include "hands/hands_params.hpp"
 #include "hands/seq_pairer.hpp"
 #include "image_codec.hpp"
-#include "paths.hpp"
 #include "seq_gaps.hpp"
 #include "tracker/tracker_params.hpp"
 
@@ -35,51 +34,60 @@ struct ArrivedFrame {
   std::string undecodable;
 };
 
-void copy_rect(float* out, const cv::Rect& r) {
+template <class Rect>
+void copy_rect(float* out, const Rect& r) {
   out[0] = static_cast<float>(r.x);
   out[1] = static_cast<float>(r.y);
   out[2] = static_cast<float>(r.width);
   out[3] = static_cast<float>(r.height);
 }
 
-// The stage's observation of one pair; false when the frame has no colour (nothing to publish).
-bool observe(HandObserver& observer, const image_t& frame, const user_track_t& track, const cv::Mat& bgr, hand_obs_t& obs) {
+// The stage's observation of one pair: "" and the HAND_OBS, or why the method refused the frame.
+std::string observe(HandMethod& method, const image_t& frame, const user_track_t& track, const cv::Mat& bgr, hand_obs_t& obs) {
   obs = hand_obs_t{};
   obs.utime = frame.utime;
   obs.seq = frame.seq;
   obs.track_id = track.track_id;
   obs.track_status = track.status;
-  for (int i = 0; i < 4; ++i) obs.user_box[i] = track.box[i];
   obs.image_width = bgr.cols;
   obs.image_height = bgr.rows;
-  obs.kind = hand_obs_t::KIND_NONE;
   UserView user;
   user.box = cv::Rect2f(track.box[0], track.box[1], track.box[2], track.box[3]);
   if (track.face_box[2] > 0 && track.face_box[3] > 0)
     user.face = cv::Rect2f(track.face_box[0], track.face_box[1], track.face_box[2], track.face_box[3]);
   user.track_id = track.track_id;
-  HandResult r;
-  if (track.status == user_track_t::STATUS_TRACKING) {
-    r = observer.observe(bgr, user);
-    if (r.colourless) return false;
-  } else
-    r.geometry = hand_geometry(observer.params(), user.box, bgr.size());
-  const SkinAdaptation a = observer.adaptation();
-  obs.skin_user_samples = a.user_samples;
-  obs.skin_scene_samples = a.scene_samples;
-  obs.skin_changed = static_cast<float>(a.changed_fraction);
-  obs.shoulder_centre[0] = r.geometry.shoulder_centre.x;
-  obs.shoulder_centre[1] = r.geometry.shoulder_centre.y;
-  obs.body_centre[0] = r.geometry.body_centre.x;
-  obs.body_centre[1] = r.geometry.body_centre.y;
+  user.tracking = track.status == user_track_t::STATUS_TRACKING;
+  const HandsOutput r = method.observe(bgr, user, frame.utime);
+  if (!r.refused.empty()) return r.refused;
+  copy_rect(obs.user_box, r.user_box);
+  obs.shoulder_centre[0] = r.shoulder_centre.x;
+  obs.shoulder_centre[1] = r.shoulder_centre.y;
+  obs.body_centre[0] = r.body_centre.x;
+  obs.body_centre[1] = r.body_centre.y;
   obs.kind = static_cast<int8_t>(r.kind);
   obs.vector[0] = r.vector.x;
   obs.vector[1] = r.vector.y;
   copy_rect(obs.hand_box, r.hand_box);
-  obs.hand_skin = r.hand_skin;
-  obs.skin_outside = r.skin_outside;
-  obs.skin_inside = r.skin_inside;
-  return true;
+  if (r.pose) {
+    obs.method = hand_obs_t::METHOD_POSE;
+    obs.pose_score = static_cast<float>(r.pose->score);
+    for (int i = 0; i < kPoseLandmarkCount; ++i) {
+      const PoseLandmark& l = r.pose->landmarks[i];
+      obs.pose_landmarks[i][0] = l.x;
+      obs.pose_landmarks[i][1] = l.y;
+      obs.pose_landmarks[i][2] = l.z;
+      obs.pose_landmarks[i][3] = l.visibility;
+    }
+  }
+  if (r.skin) {
+    obs.hand_skin = r.skin->detection.hand_skin;
+    obs.skin_outside = r.skin->detection.skin_outside;
+    obs.skin_inside = r.skin->detection.skin_inside;
+    obs.skin_user_samples = r.skin->adaptation.user_samples;
+    obs.skin_scene_samples = r.skin->adaptation.scene_samples;
+    obs.skin_changed = static_cast<float>(r.skin->adaptation.changed_fraction);
+  }
+  return "";
 }
 
 }  // namespace
@@ -91,31 +99,31 @@ std::string decode_for_hands(const image_t& frame, const ImageLimits& limits, cv
   return "";
 }
 
-std::string hands_on_decoded(HandObserver& observer, const image_t& frame, const cv::Mat& bgr, const user_track_t& track,
+std::string hands_on_decoded(HandMethod& method, const image_t& frame, const cv::Mat& bgr, const user_track_t& track,
                              hand_obs_t& obs) {
   if (track.image_width > 0 && (track.image_width != bgr.cols || track.image_height != bgr.rows))
     return "USER_TRACK seq " + std::to_string(track.seq) + " was made on a " + std::to_string(track.image_width) + "x" +
            std::to_string(track.image_height) + " frame, CAMERA has " + std::to_string(bgr.cols) + "x" +
            std::to_string(bgr.rows);
-  if (!observe(observer, frame, track, bgr, obs))
-    return "CAMERA seq " + std::to_string(frame.seq) + ": skin needs colour, the frame has none (a monochrome or "
-           "infrared camera, or a greyscale video?): fewer than hands.skin.min_colour_fraction of its pixels differ "
-           "in B, G, R by hands.skin.min_chroma";
-  return "";
+  const std::string refused = observe(method, frame, track, bgr, obs);
+  return refused.empty() ? "" : "CAMERA seq " + std::to_string(frame.seq) + ": " + refused;
 }
 
-std::string hands_on_pair(HandObserver& observer, const image_t& frame, const user_track_t& track,
+std::string hands_on_pair(HandMethod& method, const image_t& frame, const user_track_t& track,
                           const ImageLimits& limits, hand_obs_t& obs) {
   cv::Mat bgr;
   const std::string why = decode_for_hands(frame, limits, bgr);
-  return why.empty() ? hands_on_decoded(observer, frame, bgr, track, obs) : why;
+  return why.empty() ? hands_on_decoded(method, frame, bgr, track, obs) : why;
 }
 
 std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
+  return start_hands_service(config, node, make_hand_method(config.section<HandsParams>("hands")));
+}
+
+std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, std::unique_ptr<HandMethod> method) {
   struct State {
-    State(const HandsParams& p, const std::string& model, const BodyProportions& body)
-        : observer(p, SkinModel::load(model), body), pairer(p.match_window) {}
-    HandObserver observer;
+    State(const HandsParams& p, std::unique_ptr<HandMethod> m) : method(std::move(m)), pairer(p.match_window) {}
+    std::unique_ptr<HandMethod> method;
     SeqPairer<ArrivedFrame, user_track_t> pairer;
     // Buffers of frames already observed, lent back to the bus to receive the next frame into, and to decode it
     // into: a frame costs one copy (datagram -> buffer) and its decode, no allocation, and is moved, not
@@ -126,9 +134,8 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     SeqGaps gaps;
   };
   const auto params = config.section<HandsParams>("hands");
-  const std::string model_path = resolve_project_path(params.skin.model);
-  auto state = std::make_shared<State>(params, model_path, config.section<TrackerParams>("tracker").body());
-  auto& observer = state->observer;
+  auto state = std::make_shared<State>(params, std::move(method));
+  auto& method = *state->method;
   auto& pairer = state->pairer;
   auto& frames_dropped = state->frames_dropped;
   auto& tracks_dropped = state->tracks_dropped;
@@ -136,7 +143,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   auto& spare_pixels = state->spare_pixels;
 
   const auto limits = config.section<ImageLimits>("image");
-  auto handle = [&node, &observer, &pairer, &frames_dropped, &tracks_dropped, &spare_buffers, &spare_pixels, model_path](std::optional<std::pair<ArrivedFrame, user_track_t>> pair) {
+  auto handle = [&node, &method, &pairer, &frames_dropped, &tracks_dropped, &spare_buffers, &spare_pixels](std::optional<std::pair<ArrivedFrame, user_track_t>> pair) {
     for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
       node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
     for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
@@ -145,12 +152,12 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
     auto& [arrived, track] = *pair;
     hand_obs_t obs;
     const std::string why =
-        arrived.undecodable.empty() ? hands_on_decoded(observer, arrived.frame, arrived.bgr, track, obs) : arrived.undecodable;
+        arrived.undecodable.empty() ? hands_on_decoded(method, arrived.frame, arrived.bgr, track, obs) : arrived.undecodable;
     if (spare_buffers.size() < kSpareBuffers) spare_buffers.push_back(std::move(arrived.frame.data));
     if (spare_pixels.size() < kSpareBuffers && arrived.bgr.u != nullptr) spare_pixels.push_back(std::move(arrived.bgr));
     if (!why.empty()) return node.reject(why);
     publish(node, hands_channels::kHandObs, obs);
-    node.set_state(health_t::STATE_OK, "skin model " + model_path);
+    node.set_state(health_t::STATE_OK, method.description());
   };
   // A short CAMERA queue, as the tracker's (tracker.camera_queue): LCM drops the frames that arrive while it is
   // full; a skipped frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the

@@ -1,35 +1,30 @@
 // Fuzz target: the hands stage core fed a sequence of small frames (raw or JPEG) and USER_TRACKs (as
 // check_message lets them through), pair by pair as gpilot-hands takes them (hands_on_pair: decode, size
-// check, HandObserver with its skin adaptation). Each input is one sequence on a reset observer. Whatever it
+// check, the method make_hand_method builds, with its skin adaptation). Each input is one sequence on a reset observer. Whatever it
 // publishes must be a HAND_OBS that check_message accepts (what decide takes).
 #include <cstdint>
+#include <memory>
 
-#include "body_proportions.hpp"
 #include "fuzz_input.hpp"
+#include "hands/hands_core_factory.hpp"
 #include "hands/hands_params.hpp"
 #include "hands/hands_service.hpp"
 #include "image_codec.hpp"
 #include "message_checks.hpp"
-#include "paths.hpp"
 #include "stage_frames.hpp"
-#include "tracker/tracker_params.hpp"
 
 namespace {
 
-gpilot::HandObserver& observer() {
-  static gpilot::HandObserver o = [] {
-    const gpilot::HandsParams p;
-    return gpilot::HandObserver(p, gpilot::SkinModel::load(gpilot::resolve_project_path(p.skin.model)),
-                                gpilot::TrackerParams{}.body());
-  }();
-  return o;
+gpilot::HandMethod& method() {
+  static const std::unique_ptr<gpilot::HandMethod> m = gpilot::make_hand_method(gpilot::HandsParams{});
+  return *m;
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   gpilot::fuzz::Input in(data, size);
-  gpilot::HandObserver& obs_core = observer();
+  gpilot::HandMethod& obs_core = method();
   obs_core.reset();
   gpilot::ImageLimits limits;
   limits.max_width = limits.max_height = 256;

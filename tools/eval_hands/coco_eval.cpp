@@ -8,11 +8,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "coco_keypoints.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/hands_core_factory.hpp"
 #include "log.hpp"
 #include "hands/hand_overlay.hpp"
-#include "hands/skin_model.hpp"
-#include "paths.hpp"
 #include "person_csv.hpp"
 #include "truth_overlay.hpp"
 
@@ -29,8 +27,7 @@ std::string png_name(const CocoImage& im, int64_t annotation_id, BoxMode mode) {
 
 HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands, const TrackerParams& tracker) {
   const CocoKeypointFile coco = CocoKeypointFile::load(o.annotations);
-  // The tracker's head-body ratios: with hands.box_from_face the stage works on the box a given face implies.
-  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), tracker.body());
+  const auto method = make_hand_method(hands);
   UserViewChooser chooser(tracker, o.box);
   std::unique_ptr<PersonCsv> csv;
   if (!o.csv_path.empty()) csv = std::make_unique<PersonCsv>(o.csv_path);
@@ -89,17 +86,17 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
       row.face = view.face;
       row.note = view.note;
       if (view.face) board.add_face_found();
-      std::optional<HandResult> result;
+      std::optional<HandsOutput> result;
       std::optional<PersonScore> score;
       if (!view.view) {
         board.add_no_face(truth.person);
         row.status = "no_face";
       } else {
-        observer.reset();
-        result = observer.observe(bgr, *view.view);
-        score = score_person(truth, *result, bgr, &observer.skin_classifier(), &hands);
+        method->reset();
+        result = method->observe(bgr, *view.view, 0);  // one photo: no time
+        score = score_person(truth, *result, bgr, result->skin ? result->skin->classifier : nullptr, &hands);
         board.add_run(truth, *result, *score);
-        row.status = result->colourless ? "colourless" : "run";
+        row.status = result->refused.empty() ? "run" : "colourless";
         row.box = view.view->box;
         row.result = &*result;
         row.score = &*score;
@@ -107,7 +104,7 @@ HandsScoreboard run_coco_eval(const CocoEvalOptions& o, const HandsParams& hands
       if (csv) csv->write(row);
       if (!o.png_dir.empty()) {
         cv::Mat img = bgr.clone();
-        if (result) draw_hand_overlay(img, *result, observer.last_mask(), observer.last_roi());
+        if (result) draw_hand_overlay(img, *result);
         char caption[256];
         std::snprintf(caption, sizeof caption, "%s #%lld  box %s\ntruth %s (L %s, R %s)  stage %s%s%s", im.file_name.c_str(),
                       static_cast<long long>(a->id), box_mode_name(o.box), person_truth_name(truth.person), arm_truth_name(truth.left.label),

@@ -1,4 +1,4 @@
-// gpilot-eval-hands --coco: the hands stage (HandObserver, a fresh start per person) on every annotated person
+// gpilot-eval-hands --coco: the hands stage (make_hand_method, a fresh start per person) on every annotated person
 // of a COCO person-keypoints file, scored against the keypoint truth (keypoint_truth.hpp, hands_score.hpp).
 // Writes the per-person CSV and annotated PNGs on request; progress on stderr.
 #pragma once

@@ -51,7 +51,7 @@ int skin_in_square(const cv::Mat& bgr, const SkinClassifier& skin, const cv::Rec
 
 }  // namespace
 
-PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r, const cv::Mat& bgr, const SkinClassifier* skin,
+PersonScore score_person(const PersonKeypointTruth& t, const HandsOutput& r, const cv::Mat& bgr, const SkinClassifier* skin,
                          const HandsParams* params) {
   PersonScore s;
   if (!t.usable || t.person == PersonTruth::Ambiguous) return s;
@@ -60,7 +60,7 @@ PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r, cons
   s.kind_right = r.kind == s.expected;
   const std::pair<const char*, const ArmKeypointTruth*> arms[] = {{"left", &t.left}, {"right", &t.right}};
   if (t.person == PersonTruth::Out) {
-    const cv::Point2f from = r.geometry.shoulder_centre;
+    const cv::Point2f from = r.shoulder_centre;
     for (const auto& [side, arm] : arms) {
       if (arm->label != ArmTruth::Out) continue;
       const cv::Point2f tv = arm->wrist - from;
@@ -74,12 +74,12 @@ PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r, cons
     s.out_found = r.kind == HandKind::Out;
     if (!s.out_found) s.out_angle_error_deg.reset();
   } else if (t.person == PersonTruth::Front) {
-    const cv::Point2f from = r.geometry.body_centre;
+    const cv::Point2f from = r.body_centre;
     const ArmKeypointTruth* best = nullptr;
     double best_d = 0;
     for (const auto& [side, arm] : arms) {
       if (!is_front(arm->label)) continue;
-      const double d = cv::norm(arm->wrist - cv::Point2f(r.hand));
+      const double d = cv::norm(arm->wrist - r.hand);
       if (!best || d < best_d) {
         best = arm;
         best_d = d;
@@ -92,15 +92,15 @@ PersonScore score_person(const PersonKeypointTruth& t, const HandResult& r, cons
   } else {
     s.false_hand = r.kind != HandKind::None;
   }
-  if (skin && params && !bgr.empty() && s.expected != HandKind::None && r.geometry.width > 0) {
+  if (skin && params && !bgr.empty() && s.expected != HandKind::None && r.user_box.width > 0) {
     // The stage's own measures for this box: its hand square and the skin count Alg. 1 / 2 ask for there.
-    const int side = hand_square_side(*params, r.geometry.width, bgr.size());
+    const int side = hand_square_side(*params, r.user_box.width, bgr.size());
     const int paper = s.expected == HandKind::Out ? params->out_min_skin : params->front_min_skin;
     const int need = min_hand_skin(paper, params->min_skin_square_share, side);
     for (const ArmKeypointTruth* arm : {&t.left, &t.right}) {
       const bool of_kind = s.expected == HandKind::Out ? arm->label == ArmTruth::Out : is_front(arm->label);
       if (!of_kind) continue;
-      const int n = r.colourless ? 0 : skin_in_square(bgr, *skin, truth_hand_square(*arm, side));
+      const int n = !r.refused.empty() ? 0 : skin_in_square(bgr, *skin, truth_hand_square(*arm, side));
       s.hand_skin = std::max(s.hand_skin.value_or(0), n);
     }
     s.hand_shows_skin = s.hand_skin.value_or(0) > need;
@@ -114,10 +114,10 @@ void HandsScoreboard::add_truth(const PersonKeypointTruth& t) {
   ++arms_[static_cast<int>(t.right.label)];
 }
 
-void HandsScoreboard::add_run(const PersonKeypointTruth& t, const HandResult& r, const PersonScore& s) {
+void HandsScoreboard::add_run(const PersonKeypointTruth& t, const HandsOutput& r, const PersonScore& s) {
   ++run_;
   ++run_by_truth_[static_cast<int>(t.person)];
-  colourless_[static_cast<int>(t.person)] += r.colourless;
+  colourless_[static_cast<int>(t.person)] += !r.refused.empty();
   if (!s.scored) return;
   ++scored_;
   ++confusion_[static_cast<int>(s.expected)][static_cast<int>(r.kind)];

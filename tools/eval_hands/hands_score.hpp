@@ -1,7 +1,7 @@
 // Scores of the hands stage against keypoint truth, per person and summed over a set of photos.
 //   OUT found:   stage kind OUT on a person with an OUT arm; angle error = angle between the stage's vector
 //                (hand - p_uc) and (truth wrist - p_uc), p_uc = the STAGE's own shoulder centre
-//                (HandResult.geometry.shoulder_centre); both arms OUT: the nearer angle.
+//                (HandsOutput.shoulder_centre); both arms OUT: the nearer angle.
 //   FRONT found: stage kind FRONT on a FRONT person; HIGH/LOW right: the stage vector (hand - p_bc) points up
 //                (y < 0) exactly when the truth wrist is above the torso centre (FRONT_HIGH). Two FRONT arms:
 //                the one whose wrist is nearer the stage's hand pixel.
@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-#include "hands/hand_detector.hpp"
+#include "hands/hand_method.hpp"
 #include "keypoint_truth.hpp"
 
 namespace gpilot {
@@ -43,7 +43,7 @@ struct PersonScore {
 };
 
 // skin: the stage's classifier as it ran on this person (nullptr: hand_skin not measured).
-PersonScore score_person(const PersonKeypointTruth& truth, const HandResult& result, const cv::Mat& bgr = {},
+PersonScore score_person(const PersonKeypointTruth& truth, const HandsOutput& result, const cv::Mat& bgr = {},
                          const SkinClassifier* skin = nullptr, const HandsParams* params = nullptr);
 // The truth hand's square: the stage's hand square side, centred a third of the forearm beyond the wrist.
 cv::Rect truth_hand_square(const ArmKeypointTruth& arm, int side);
@@ -65,7 +65,7 @@ class HandsScoreboard {
   void add_no_face(PersonTruth t) { ++no_face_[static_cast<int>(t)]; }
   void add_face_found() { ++faces_found_; }
   // A person the stage ran on (a colourless photo counts as run: the stage's NONE is scored).
-  void add_run(const PersonKeypointTruth& truth, const HandResult& result, const PersonScore& score);
+  void add_run(const PersonKeypointTruth& truth, const HandsOutput& result, const PersonScore& score);
 
   int64_t read() const { return read_; }
   int64_t scored() const { return scored_; }

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,22 +21,45 @@
 
 using namespace gpilot;
 
-int main(int argc, char** argv) {
+namespace {
+
+// --method M is --set hands.method=M, so the config's rules (a method this build has) judge it.
+std::vector<std::string> method_as_set(int argc, char** argv) {
+  std::vector<std::string> args(argv, argv + argc);
+  for (size_t i = 1; i < args.size(); ++i) {
+    if (args[i] == "--method" && i + 1 < args.size()) {
+      args[i] = "--set";
+      args[i + 1] = "hands.method=" + args[i + 1];
+    } else if (args[i].rfind("--method=", 0) == 0) {
+      args[i] = "--set=hands.method=" + args[i].substr(9);
+    }
+  }
+  return args;
+}
+
+}  // namespace
+
+int main(int argc_given, char** argv_given) {
+  std::vector<std::string> args = method_as_set(argc_given, argv_given);
+  std::vector<char*> argv_vec;
+  for (auto& a : args) argv_vec.push_back(a.data());
+  const int argc = static_cast<int>(argv_vec.size());
+  char** argv = argv_vec.data();
   ServiceCli cli("gpilot-eval-hands",
-                 "Scores the hands stage (skin + Alg. 1/2, through HandObserver) apart from the tracker.\n"
+                 "Scores the hands stage (hands.method, built as the service builds it) apart from the tracker.\n"
                  "--scenario NAME (default): a synthetic scenario against its ground truth, with the TRUE user box and the true face on the\n  frames the tracker would hand it over (the first, then every tracker.face_recheck_frames):\n"
                  "  kind accuracy and confusion matrix, OUT angle and length error, FRONT higher/lower success, ms per frame;\n"
                  "  a few annotated PNGs (skin in red, hand square, vector).\n"
                  "--coco ANNOTATIONS.json --images DIR: every annotated person of real photos (COCO person keypoints),\n"
-                 "  one fresh HandObserver start per person, with\n"
-                 "  --box annotation: the annotation's bbox; face = the largest Haar face in the tracker's face re-check\n"
-                 "                    window of that box, or none;\n"
+                 "  one fresh start of the method per person, with\n"
+                 "  --box annotation: the largest Haar face in the tracker's face re-check window of the annotation's bbox,\n"
+                 "                    and the body box the tracker makes from it (body_from_face, section tracker); no\n"
+                 "                    face there: the annotation's bbox itself;\n"
                  "  --box face: the body box the tracker would make (body_from_face, section tracker) from the Haar face\n"
                  "              found in the person's head region (nose/eyes/ears); no face: counted, not scored.\n"
                  "  --box keypoints: the same from the face box the nose/eyes/ears keypoints span (the hands stage apart\n"
                  "              from face finding: a tracker that never misses a face).\n"
-                 "  The face goes to the stage too: with hands.box_from_face on, the stage itself works on the box the face\n"
-                 "  implies (--set hands.box_from_face=false keeps the annotation box in --box annotation).\n"
+                 "  The face goes to the stage too (its skin, the neck below it); the stage works on the box as given.\n"
                  "  Scores: OUT found and its angle error (stage hand - p_uc vs truth wrist - p_uc, p_uc = the stage's own\n"
                  "  shoulder centre); FRONT found and HIGH/LOW right (stage hand - p_bc, y < 0 = HIGH, vs truth wrist\n"
                  "  above/below the torso centre); false hands on REST persons; kind accuracy over scored persons.\n"
@@ -52,9 +76,11 @@ int main(int argc, char** argv) {
   SyntheticEvalOptions syn;
   CocoEvalOptions coco;
   VideoEvalOptions video;
-  std::string box = "annotation", png_dir, csv_path;
+  std::string box = "annotation", png_dir, csv_path, method_help;
   bool json = false;
   auto& app = cli.app();
+  // Rewritten to --set hands.method=M before parsing (method_as_set): here for --help.
+  app.add_option("--method", method_help, "the hands method to score: pose or skin (default: the config's hands.method)");
   auto* scenario_opt = app.add_option("--scenario", syn.scenario, "synthetic mode: scenario name (deploy/scenarios/NAME.yaml) or path");
   auto* seed_opt = app.add_option("--seed", syn.seed, "synthetic mode: world seed");
   auto* stride_opt = app.add_option("--stride", syn.stride, "synthetic mode: score every N-th frame")->check(CLI::PositiveNumber);
@@ -102,7 +128,7 @@ int main(int argc, char** argv) {
     const auto hands = config.section<HandsParams>("hands");
     const std::string box_description = coco.box == BoxMode::Face        ? "body_from_face of the Haar face on the person's head keypoints"
                                         : coco.box == BoxMode::Keypoints ? "body_from_face of the face box the head keypoints span"
-                                                                         : "COCO annotation bbox";
+                                                                         : "body_from_face of the Haar face in the COCO annotation bbox's re-check window, else that bbox";
     const HandsScoreboard board = run_coco_eval(coco, hands, config.section<TrackerParams>("tracker"));
     if (json) {
       const nlohmann::json context = {{"mode", "coco"},
@@ -110,7 +136,6 @@ int main(int argc, char** argv) {
                                       {"images", coco.images_dir},
                                       {"box", box},
                                       {"user_box", box_description},
-                                      {"hands_box_from_face", hands.box_from_face},
                                       {"truth", "keypoint_truth rules (gpilot-eval-hands --help)"}};
       std::cout << board.to_json(context).dump() << std::endl;
     } else {

@@ -50,10 +50,11 @@ void PersonCsv::write(const PersonCsvRow& r) {
             : std::string(",,,");
   line += rect(r.box) + "," + (r.face ? "1" : "0") + "," + rect(r.face) + ",";
   if (r.result) {
-    const HandResult& h = *r.result;
+    const HandsOutput& h = *r.result;
     const char* from = h.kind == HandKind::Out ? "p_uc" : h.kind == HandKind::Front ? "p_bc" : "";
-    line += rect(cv::Rect2f(h.geometry.box)) + "," + hand_kind_name(h.kind) + "," + point(cv::Point2f(h.hand)) + "," + point(h.geometry.shoulder_centre) + "," +
-            point(h.geometry.body_centre) + "," + from + "," + point(h.vector) + ",";
+    const cv::Rect2f box = h.skin ? cv::Rect2f(h.skin->detection.geometry.box) : h.user_box;  // the skin method's: clipped
+    line += rect(box) + "," + hand_kind_name(h.kind) + "," + point(h.hand) + "," + point(h.shoulder_centre) + "," +
+            point(h.body_centre) + "," + from + "," + point(h.vector) + ",";
   } else {
     line += ",,,,,,,,,,,,,,";
   }
@@ -64,8 +65,10 @@ void PersonCsv::write(const PersonCsvRow& r) {
   } else {
     line += ",,,,,,";
   }
-  if (r.result)
-    line += std::to_string(r.result->hand_skin) + "," + std::to_string(r.result->skin_outside) + "," + std::to_string(r.result->skin_inside);
+  if (r.result && r.result->skin) {
+    const HandResult& d = r.result->skin->detection;
+    line += std::to_string(d.hand_skin) + "," + std::to_string(d.skin_outside) + "," + std::to_string(d.skin_inside);
+  }
   else
     line += ",,";
   const bool measured = r.score && r.score->hand_skin;

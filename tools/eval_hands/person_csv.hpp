@@ -1,6 +1,6 @@
 // The per-person CSV of gpilot-eval-hands --coco: one line per annotated person (also the skipped ones, with
-// their status), truth per arm and person, the box and face given to the stage, the box the stage used (with
-// hands.box_from_face the one the face implies), the stage's kind, hand pixel,
+// their status), truth per arm and person, the box and face given to the stage, the box the stage used (the
+// given one, clipped to the image), the stage's kind, hand pixel,
 // reference points and vector, the truth vector and the scores.
 #pragma once
 
@@ -24,7 +24,7 @@ struct PersonCsvRow {
   std::string note;
   const PersonKeypointTruth* truth = nullptr;  //!< may be null (image unreadable)
   std::optional<cv::Rect2f> box, face;
-  const HandResult* result = nullptr;          //!< null when the stage did not run
+  const HandsOutput* result = nullptr;          //!< null when the stage did not run
   const PersonScore* score = nullptr;
 };
 

@@ -13,11 +13,10 @@
 
 #include "capture/synthetic_world.hpp"
 #include "clock.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/hands_core_factory.hpp"
 #include "hands/hand_overlay.hpp"
 #include "hands/hands_params.hpp"
 #include "hands_score.hpp"
-#include "paths.hpp"
 #include "tracker/tracker_params.hpp"
 
 namespace gpilot {
@@ -34,8 +33,7 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
   rules.tracker = config.section<TrackerParams>("tracker");
   rules.hands = hands;
   const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(o.scenario), o.seed, rules);
-  const std::string model_path = resolve_project_path(hands.skin.model);
-  HandObserver observer(hands, SkinModel::load(model_path), rules.tracker.body());
+  const auto method = make_hand_method(hands);
 
   const double fps = world.params().fps;
   const int64_t frames = static_cast<int64_t>(std::floor(world.scenario().duration_s() * fps));
@@ -57,8 +55,9 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
     // The face as the tracker hands it over: on the first frame and at each re-check (tracker.face_recheck_frames).
     const int recheck = std::max(1, rules.tracker.face_recheck_frames);
     const bool face_frame = i == 0 || (rules.tracker.face_recheck_frames > 0 && i % recheck < o.stride);
-    const HandResult r = observer.observe(
-        f.bgr, UserView{f.truth.user_box, face_frame ? std::optional<cv::Rect2f>(f.truth.face_box) : std::nullopt, 1});
+    const HandsOutput r =
+        method->observe(f.bgr, UserView{f.truth.user_box, face_frame ? std::optional<cv::Rect2f>(f.truth.face_box) : std::nullopt, 1},
+                        std::llround(1e6 * static_cast<double>(i) / fps));
     ms.push_back(static_cast<double>(monotonic_utime() - t0) / 1000.0);
     const int truth = std::clamp(f.truth.expected_kind, 0, 2), got = static_cast<int>(r.kind);
     ++confusion[truth][got];
@@ -66,9 +65,12 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
     steady = truth == last_truth ? steady + 1 : 0;
     last_truth = truth;
     const cv::Point2f tv = f.truth.expected_vector;
-    if (csv)
+    if (csv) {
+      const HandResult none;
+      const HandResult& d = r.skin ? r.skin->detection : none;
       std::fprintf(csv, "%lld,%.3f,%s,%s,%.1f,%.1f,%.1f,%.1f,%d,%d,%d\n", static_cast<long long>(i), static_cast<double>(i) / fps,
-                   kKinds[truth], kKinds[got], tv.x, tv.y, r.vector.x, r.vector.y, r.hand_skin, r.skin_outside, r.skin_inside);
+                   kKinds[truth], kKinds[got], tv.x, tv.y, r.vector.x, r.vector.y, d.hand_skin, d.skin_outside, d.skin_inside);
+    }
     if (truth == 1 && got == 1) {
       angle_err.push_back(angle_between_deg(r.vector, tv));
       const double lt = std::hypot(tv.x, tv.y), lg = std::hypot(r.vector.x, r.vector.y);
@@ -94,7 +96,7 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
         last_error_png = i;
       }
       cv::Mat img = f.bgr.clone();
-      draw_hand_overlay(img, r, observer.last_mask(), observer.last_roi());
+      draw_hand_overlay(img, r);
       const cv::Point2f from = truth == 1 ? f.truth.shoulder_centre : f.truth.body_centre;
       if (truth != 0) cv::arrowedLine(img, from, from + tv, cv::Scalar(255, 0, 255), 1, cv::LINE_AA, 0, 0.08);
       char text[160];

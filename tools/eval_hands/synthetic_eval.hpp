@@ -1,4 +1,4 @@
-// gpilot-eval-hands --scenario: the hands stage (HandObserver, the TRUE user box, no face, track 1) over a
+// gpilot-eval-hands --scenario: the hands stage (make_hand_method, the TRUE user box, no face, track 1) over a
 // synthetic scenario, scored against the synthetic world's ground truth: kind accuracy (NONE/OUT/FRONT) with a
 // confusion matrix, angle and length error of OUT vectors, higher/lower success of FRONT frames; a few
 // annotated PNGs. The tracker is not involved.

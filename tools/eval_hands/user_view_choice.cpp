@@ -36,9 +36,11 @@ ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotat
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
   if (mode_ == BoxMode::Annotation) {
     c.search_window = face_recheck_window(cv::Rect2d(annotation_box), tracker_) & image;
-    if (const auto f = faces_.detect(bgr, c.search_window)) c.face = to_float(f->face);
+    // As the tracker: a face found makes the body box (its re-check re-anchors the box on the face it finds).
+    const auto f = faces_.detect(bgr, c.search_window);
+    if (f) c.face = to_float(f->face);
     else c.note = "no face in the re-check window";
-    c.view = UserView{annotation_box, c.face, track_id};
+    c.view = UserView{f ? to_float(body_from_face(f->face, tracker_)) : annotation_box, c.face, track_id};
     return c;
   }
   if (!truth.face_box) {

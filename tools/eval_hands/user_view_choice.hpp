@@ -1,6 +1,7 @@
 // Which user box and face the hands stage is given for one annotated person of a photo:
-//   annotation: the annotation's bbox; face = the largest Haar face in the top part of that box, searched in
-//               the window the tracker's face re-check uses for a box (face_recheck_window), or none.
+//   annotation: the largest Haar face in the top part of the annotation's bbox, searched in the window the
+//               tracker's face re-check uses for a box (face_recheck_window), and the body box the tracker makes
+//               from it (body_from_face, tracker params); no face there: the annotation's bbox, no face.
 //   face:       the body box the tracker would make from this person's face: the largest Haar face in the
 //               head region spanned by the nose/eyes/ears keypoints (their face box grown 2x), accepted if
 //               its centre lies in that face box grown 1.5x; body box = body_from_face(face, tracker params)
@@ -14,7 +15,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "hands/hand_observer.hpp"
+#include "hands/hand_method.hpp"
 #include "keypoint_truth.hpp"
 #include "tracker/face_detector.hpp"
 #include "tracker/tracker_params.hpp"

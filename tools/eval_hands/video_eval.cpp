@@ -16,11 +16,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "paths.hpp"
 #include "capture/frame_sources.hpp"
 #include "capture/scenario.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "decide/decide_service.hpp"
+#include "hands/hands_core_factory.hpp"
 #include "hands/hands_params.hpp"
 #include "hands/hands_service.hpp"
 #include "image_codec.hpp"
@@ -133,7 +133,7 @@ int run_video_eval(const VideoEvalOptions& o, const Config& config) {
     if (!why.empty()) throw std::runtime_error("--init-box: " + why);
   }
   const auto hands = config.section<HandsParams>("hands");
-  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), tracker_params.body());
+  const auto method = make_hand_method(hands);
   GestureDecider decider(config.section<DecideParams>("decide"));
   const auto limits = config.section<ImageLimits>("image");
 
@@ -176,7 +176,7 @@ int run_video_eval(const VideoEvalOptions& o, const Config& config) {
     FrameMessages msgs;
     msgs.track = track;
     hand_obs_t obs;
-    const std::string reason = hands_on_pair(observer, image, track, limits, obs);
+    const std::string reason = hands_on_pair(*method, image, track, limits, obs);
     std::string mode;
     if (!reason.empty()) {
       ++rejected;

@@ -280,8 +280,7 @@ TEST(EvalHandsCli, GivenARealClipOfAManAtRestWhenRunThenNoCommandWouldMoveTheDro
   // The clip does defeat the paper's stage: it flies FINE on the shirt.
   const ToolRun paper = run_tool("--video " + kRestingClip + " --init-box 261,50,39,132 --json --set hands.skin.adapt.enabled=false "
                                  "--set hands.max_blob_hand_areas=0 --set hands.reach_ratio=0 --set hands.out_min_angle_deg=0 "
-                                 "--set hands.arm_connected=false --set hands.front_max_upright=0 --set hands.front_max_hand_areas=0 "
-                                 "--set hands.box_from_face=false",
+                                 "--set hands.arm_connected=false --set hands.front_max_upright=0 --set hands.front_max_hand_areas=0",
                                  dir);
   ASSERT_EQ(paper.code, 0) << paper.err;
   EXPECT_GE(json::parse(paper.out).value("rest_moving_command_share", 0.0), 0.5);

@@ -28,10 +28,10 @@ PersonKeypointTruth out_person() {
 }
 
 // The stage ran on an 80 px box: its hand square is 20 px, where Alg. 1 needs more than 30 skin pixels.
-HandResult stage_ran(bool colourless = false) {
-  HandResult r;
-  r.geometry.width = 80;
-  r.colourless = colourless;
+HandsOutput stage_ran(bool colourless = false) {
+  HandsOutput r;
+  r.user_box = cv::Rect2f(100, 60, 80, 160);
+  if (colourless) r.refused = "no colour";
   return r;
 }
 

@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hands/colour_check.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/skin_hand_method.hpp"
 #include "hands/hands_service.hpp"
 #include "image_codec.hpp"
 #include "paths.hpp"
@@ -64,7 +64,7 @@ TEST(ColourCheck, AFewColouredPixelsAreNotEnoughAndOnePercentIs) {
 
 TEST(ColourCheck, TheObserverRefusesAGreyPhotoAndLearnsNothingFromIt) {
   HandsParams p;
-  HandObserver observer(p, SkinModel::load(resolve_project_path(p.skin.model)));
+  SkinHandMethod observer(p, SkinModel::load(resolve_project_path(p.skin.model)));
   const cv::Mat photo = cv::imread(resolve_project_path("data/people/messi5.jpg"));
   ASSERT_FALSE(photo.empty());
   UserView user;
@@ -72,14 +72,14 @@ TEST(ColourCheck, TheObserverRefusesAGreyPhotoAndLearnsNothingFromIt) {
   user.face = cv::Rect2f(226, 93, 40, 40);  // the face, as in test_face_detector.cpp
   user.track_id = 1;
   // GIVEN the photo in grey THEN nothing is looked for and nothing learnt
-  HandResult r = observer.observe(as_grey(photo), user);
+  HandResult r = observer.detect(as_grey(photo), user);
   EXPECT_TRUE(r.colourless);
   EXPECT_EQ(r.kind, HandKind::None);
   EXPECT_EQ(r.skin_inside + r.skin_outside, 0);
   EXPECT_EQ(observer.adaptation().user_samples, 0);
   EXPECT_EQ(observer.adaptation().scene_samples, 0);
   // WHEN it is in colour THEN the stage runs and learns the scene and the face
-  r = observer.observe(photo, user);
+  r = observer.detect(photo, user);
   EXPECT_FALSE(r.colourless);
   EXPECT_GT(observer.adaptation().scene_samples, 0);
   EXPECT_GT(observer.adaptation().user_samples, 0);
@@ -87,7 +87,7 @@ TEST(ColourCheck, TheObserverRefusesAGreyPhotoAndLearnsNothingFromIt) {
 
 TEST(ColourCheck, TheServiceRejectsAGreyFrameNamingTheCause) {
   HandsParams p;
-  HandObserver observer(p, SkinModel::load(resolve_project_path(p.skin.model)));
+  SkinHandMethod observer(p, SkinModel::load(resolve_project_path(p.skin.model)));
   const cv::Mat photo = cv::imread(resolve_project_path("data/people/messi5.jpg"));
   ASSERT_FALSE(photo.empty());
   user_track_t track{};

@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hands/hand_detector.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/skin_hand_method.hpp"
 #include "paths.hpp"
 
 using namespace gpilot;
@@ -97,27 +97,24 @@ TEST_F(RulesTest, SkinInsideTheBoxIsNotMeasuredAsAWall) {
   EXPECT_EQ(r.skin_inside, 80 * 72);
 }
 
-TEST(HandObserver, AFaceGivesTheBoxItImpliesAndANewTrackForgetsTheUser) {
-  // GIVEN a face 32 x 32 at (124, 108): the tracker's head-body ratios make the box 88 x 224 at (96, 100)
+TEST(SkinHandMethod, TheBoxIsTheTrackersEvenWithAFaceAndANewTrackForgetsTheUser) {
+  // GIVEN a face 32 x 32 at (124, 108), whose preset head-body ratios would make the box 88 x 224 at (96, 100)
   HandsParams p;
   const SkinModel model = SkinModel::load(resolve_project_path(p.skin.model));
-  HandObserver o(p, model);
+  SkinHandMethod o(p, model);
   cv::Mat frame(kImage, CV_8UC3, kBlue);
   cv::rectangle(frame, cv::Rect(124, 108, 32, 32), kSkin, cv::FILLED);
-  auto r = o.observe(frame, UserView{kBox, cv::Rect2f(124, 108, 32, 32), 1});
-  EXPECT_EQ(r.geometry.box, cv::Rect(96, 100, 88, 224));
+  // WHEN the tracker's box comes with it THEN the stage works on the tracker's box, and learns the face's skin
+  auto r = o.detect(frame, UserView{kBox, cv::Rect2f(124, 108, 32, 32), 1});
+  EXPECT_EQ(r.geometry.box, cv::Rect(100, 100, 80, 160));
   EXPECT_EQ(o.adaptation().user_samples, 20 * 11);  // cheek band: x 130..149 (124 + 0.2 and 0.8 of 32, rounded), y 124..134
-  // WHEN the next frame has no face THEN the given box is used and what was learnt stays
-  r = o.observe(frame, UserView{kBox, std::nullopt, 1});
+  // WHEN the next frame has no face THEN the same box, and what was learnt stays
+  r = o.detect(frame, UserView{kBox, std::nullopt, 1});
   EXPECT_EQ(r.geometry.box, cv::Rect(100, 100, 80, 160));
   EXPECT_EQ(o.adaptation().user_samples, 20 * 11);
   // WHEN a new track starts THEN it is forgotten
-  o.observe(frame, UserView{kBox, std::nullopt, 2});
+  o.detect(frame, UserView{kBox, std::nullopt, 2});
   EXPECT_EQ(o.adaptation().user_samples, 0);
-  // AND with box_from_face off the given box is kept even with a face
-  p.box_from_face = false;
-  HandObserver plain(p, model);
-  EXPECT_EQ(plain.observe(frame, UserView{kBox, cv::Rect2f(124, 108, 32, 32), 1}).geometry.box, cv::Rect(100, 100, 80, 160));
 }
 
 TEST_F(RulesTest, AForearmHangingAtTheTorsosEdgeIsNotAHandInFront) {

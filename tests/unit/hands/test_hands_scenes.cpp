@@ -1,4 +1,4 @@
-// The hands stage (HandObserver, as gpilot-hands runs it) on the synthetic scenes that defeat a skin table
+// The hands stage (make_hand_method, as gpilot-hands runs it) on the synthetic scenes that defeat a skin table
 // alone: `nuisances` with its background photo as shot, `warm-wall` (a light pine wall 1 m behind a user in
 // short sleeves: 94.7 % of its pixels are skin to the table) and `dark-skin`. True user box; the true face
 // handed over on the first frame and every tracker.face_recheck_frames, as the tracker does. Every 5th frame.
@@ -7,12 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "capture/synthetic_world.hpp"
 #include "config.hpp"
-#include "hands/hand_observer.hpp"
-#include "paths.hpp"
+#include "hands/hands_core_factory.hpp"
 
 using namespace gpilot;
 
@@ -24,7 +24,7 @@ double kind_accuracy(const std::string& scenario, const HandsParams& hands) {
   rules.tracker = config.section<TrackerParams>("tracker");
   rules.hands = hands;
   const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), 1, rules);
-  HandObserver observer(hands, SkinModel::load(resolve_project_path(hands.skin.model)), rules.tracker.body());
+  const auto method = make_hand_method(hands);
   const double fps = world.params().fps;
   const int frames = static_cast<int>(world.scenario().duration_s() * fps);
   const int stride = 5, recheck = rules.tracker.face_recheck_frames;
@@ -32,7 +32,8 @@ double kind_accuracy(const std::string& scenario, const HandsParams& hands) {
   for (int i = 0; i < frames; i += stride) {
     const SyntheticFrame f = world.render(i / fps, i, std::nullopt);
     const bool face = i == 0 || i % recheck < stride;
-    const HandResult r = observer.observe(f.bgr, UserView{f.truth.user_box, face ? std::optional(f.truth.face_box) : std::nullopt, 1});
+    const HandsOutput r =
+        method->observe(f.bgr, UserView{f.truth.user_box, face ? std::optional(f.truth.face_box) : std::nullopt, 1}, std::llround(1e6 * i / fps));
     right += static_cast<int>(r.kind) == std::clamp(f.truth.expected_kind, 0, 2);
     ++scored;
   }
@@ -48,7 +49,6 @@ HandsParams papers_stage() {
   p.arm_connected = false;
   p.front_max_upright = 0;
   p.front_max_hand_areas = 0;
-  p.box_from_face = false;
   return p;
 }
 

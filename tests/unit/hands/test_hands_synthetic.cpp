@@ -11,7 +11,7 @@
 #include "capture/synthetic_world.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "hands/hand_detector.hpp"
-#include "hands/hand_observer.hpp"
+#include "hands/skin_hand_method.hpp"
 #include "paths.hpp"
 
 using namespace gpilot;
@@ -147,15 +147,15 @@ TEST(HandsSynthetic, TheLastFaceIsCarriedWithTheBoxUntilTheTrackChanges) {
   const SyntheticFrame f = world.render(1.0, 25, CameraPose{3.0 - 1.9, 0.0, -1.5, 0.0});
   cv::Rect2f high = f.truth.user_box;
   high.y -= 0.15f * f.truth.face_box.height;
-  HandObserver obs(p, SkinModel::load(resolve_project_path(p.skin.model)));
+  SkinHandMethod obs(p, SkinModel::load(resolve_project_path(p.skin.model)));
   // The box from the face would be the true one (hands.box_from_face): the high box is on the frames without.
-  EXPECT_EQ(obs.observe(f.bgr, UserView{high, cv::Rect2f(f.truth.face_box), 1}).kind, HandKind::None);
+  EXPECT_EQ(obs.detect(f.bgr, UserView{high, cv::Rect2f(f.truth.face_box), 1}).kind, HandKind::None);
   for (int i = 0; i < 3; ++i) {
-    const HandResult r = obs.observe(f.bgr, UserView{high, std::nullopt, 1});
+    const HandResult r = obs.detect(f.bgr, UserView{high, std::nullopt, 1});
     EXPECT_EQ(r.kind, HandKind::None) << "frame " << i + 1 << " after the face: vector " << r.vector;
   }
   // A new track: the face is not this track's; the box's ratio alone shows the neck.
-  const HandResult fresh = obs.observe(f.bgr, UserView{high, std::nullopt, 2});
+  const HandResult fresh = obs.detect(f.bgr, UserView{high, std::nullopt, 2});
   EXPECT_EQ(fresh.kind, HandKind::Front) << fresh.vector;
   EXPECT_LT(fresh.vector.y, 0);
 }
