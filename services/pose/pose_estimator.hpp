@@ -56,7 +56,12 @@ class PoseEstimator {
   const PoseCounters& counters() const { return counters_; }
 
  private:
-  std::optional<PoseRoi> seed_roi(const cv::Mat& bgr, const cv::Rect2f& user_box, bool& nonfinite);
+  struct Seed {
+    PoseRoi roi;
+    LandmarkOutput out;
+  };
+  // The detector, then the landmark model on the candidate ROIs; nullopt when no pose is found.
+  std::optional<Seed> seed(const cv::Mat& bgr, const cv::Rect2f& user_box, bool& nonfinite);
   PoseResult lost(PoseResult r);
 
   PoseParams params_;
@@ -67,12 +72,24 @@ class PoseEstimator {
   PoseCounters counters_;
 };
 
-// The detection whose hip centre lies in user_box (the tracker's box reaches from the head to the knees: the
-// user's hips are in it; a neighbour's beside it are not) and whose full-body square (centred on the hips, side
-// twice the alignment distance) overlaps user_box most; nullopt when none. An empty user_box takes the first
-// (best-scoring) detection.
+// The detections that may be the user's, best match first: those whose hip centre lies in user_box (the
+// tracker's box reaches from the head to the knees: the user's hips are in it), ordered by how far the body's
+// centre line (hip centre to the full-body scale point) is from the box's, in box widths, plus how far the
+// body's size (twice the alignment distance) is from the box height (|log| of their ratio): of two people in one
+// box, the one the box is drawn around. At most max_count. An empty user_box: the detections as given (best
+// score first).
+std::vector<PersonDetection> user_detection_candidates(const std::vector<PersonDetection>& detections,
+                                                       const cv::Rect2f& user_box, size_t max_count);
+
+// The first of user_detection_candidates; nullopt when there is none.
 std::optional<PersonDetection> choose_user_detection(const std::vector<PersonDetection>& detections,
                                                      const cv::Rect2f& user_box);
+
+// The user box's own ROI: upright, centred on the box, side scale x its long side.
+PoseRoi box_roi(const cv::Rect2f& user_box, float scale);
+
+// How well a pose matches the user box: IoU of the bounding box of its 33 landmarks with user_box.
+double landmarks_box_iou(const PoseLandmarks& landmarks, const cv::Rect2f& user_box);
 
 // r grown by share x its width on the left and right and share x its height above and below.
 cv::Rect2f grow_box(const cv::Rect2f& r, float share);

@@ -196,6 +196,47 @@ TEST(ChooseUserDetection, HipsInTheBoxAndBestOverlapNeverTheBystander) {
   EXPECT_FLOAT_EQ(choose_user_detection({bystander, me}, cv::Rect2f())->score, 0.95f);
 }
 
+TEST(ChooseUserDetection, OfTwoPeopleInOneBoxTheOneItIsDrawnAround) {
+  // GIVEN a box around one person, the hips of a neighbour also inside it near its edge; the neighbour's
+  // full-body square overlaps the box more (square IoU, the former rule, picked the neighbour)
+  const cv::Rect2f user(200, 100, 200, 400);
+  PersonDetection me = det(0.6f, {280, 110, 40, 40}, {300, 330});
+  me.keypoints[1] = {300, 130};  // body 400 px: the box height
+  PersonDetection neighbour = det(0.9f, {190, 140, 40, 40}, {210, 300});
+  neighbour.keypoints[1] = {205, 130};  // body 340 px
+  // WHEN ranked
+  const auto ranked = user_detection_candidates({neighbour, me}, user, 5);
+  // THEN the one centred in the box and of its height first, the neighbour second
+  ASSERT_EQ(ranked.size(), 2u);
+  EXPECT_FLOAT_EQ(ranked[0].score, 0.6f);
+  EXPECT_FLOAT_EQ(ranked[1].score, 0.9f);
+  EXPECT_EQ(user_detection_candidates({neighbour, me}, user, 1).size(), 1u);
+  EXPECT_FLOAT_EQ(choose_user_detection({neighbour, me}, user)->score, 0.6f);
+  // no box: as given (best score first), at most max_count
+  EXPECT_FLOAT_EQ(user_detection_candidates({neighbour, me}, cv::Rect2f(), 1).at(0).score, 0.9f);
+}
+
+TEST(BoxRoi, UprightCentredOnTheBoxSideTheLongSideTimesScale) {
+  const PoseRoi r = box_roi(cv::Rect2f(100, 50, 80, 200), 1.25f);
+  EXPECT_FLOAT_EQ(r.centre.x, 140.0f);
+  EXPECT_FLOAT_EQ(r.centre.y, 150.0f);
+  EXPECT_FLOAT_EQ(r.size, 250.0f);
+  EXPECT_FLOAT_EQ(r.rotation, 0.0f);
+  EXPECT_FLOAT_EQ(box_roi(cv::Rect2f(0, 0, 300, 100), 1.0f).size, 300.0f);
+}
+
+TEST(LandmarksBoxIou, BoundingBoxOfTheLandmarksAgainstTheBox) {
+  // GIVEN landmarks spanning x 100..200, y 50..250 (all at the centre but two corners)
+  PoseLandmarks l{};
+  for (PoseLandmark& p : l) p = {150, 150, 0, 1, 1};
+  l[0] = {100, 50, 0, 1, 1};
+  l[32] = {200, 250, 0, 1, 1};
+  // THEN the IoU with the same box is 1, with its left half 0.5, with a box beside it 0
+  EXPECT_NEAR(landmarks_box_iou(l, cv::Rect2f(100, 50, 100, 200)), 1.0, 1e-9);
+  EXPECT_NEAR(landmarks_box_iou(l, cv::Rect2f(100, 50, 50, 200)), 0.5, 1e-9);
+  EXPECT_NEAR(landmarks_box_iou(l, cv::Rect2f(300, 50, 100, 200)), 0.0, 1e-9);
+}
+
 TEST(DecodePoseLandmarks, CropPixelsToFramePixelsZScaledLikeXVisibilitySigmoidAndNaNRefused) {
   // GIVEN a ROI of side 512 centred at (300, 200), upright: crop pixel = 2 frame pixels
   const PoseRoi roi{{300, 200}, 512, 0};
@@ -237,6 +278,8 @@ TEST(PoseParams, DefaultsPassAndAnUnknownModelOrBadRangeIsRefusedByName) {
     EXPECT_NE(std::string(e.what()).find("pose.model"), std::string::npos) << e.what();
   }
   EXPECT_THROW(Config::from_string("pose: {pose_flag_threshold: 1.5}").section<PoseParams>("pose"), ConfigError);
+  EXPECT_THROW(Config::from_string("pose: {seed_candidates: 0}").section<PoseParams>("pose"), ConfigError);
+  EXPECT_THROW(Config::from_string("pose: {box_roi_scale: -1}").section<PoseParams>("pose"), ConfigError);
   EXPECT_THROW(Config::from_string("pose: {smoothing: {landmarks: {min_cutoff: 0}}}").section<PoseParams>("pose"), ConfigError);
 }
 
