@@ -110,6 +110,15 @@ struct RangeBand {
   TrackVsTruth track;
 };
 
+// Whether the operator's ENGAGE took: from FLIGHT_SETPOINT's engaged flag, and gpilot-flight's HEALTH for why not
+// (an ENGAGE refused by the autopilot's answer or its silence, a lost link).
+struct Engagement {
+  int64_t setpoints = 0, engaged_setpoints = 0;
+  bool engaged_at_end = false;
+  int64_t disengagements = 0;  // engaged setpoints followed by a not engaged one
+  std::string last_refusal;    // gpilot-flight's last "refusing to engage: ..." or "disengaged: ...", "" if none
+};
+
 struct Summary {
   int64_t frames = 0;
   double duration_s = 0;  // first to last CAMERA utime
@@ -133,15 +142,6 @@ struct Summary {
   Engagement engagement;
   std::map<std::string, ChannelGaps> gaps;  // by channel
   int64_t logger_lost() const;              // missing on counter channels: messages the logger lost
-};
-
-// Whether the operator's ENGAGE took: from FLIGHT_SETPOINT's engaged flag, and gpilot-flight's HEALTH for why not
-// (an ENGAGE refused by the autopilot's answer or its silence, a lost link).
-struct Engagement {
-  int64_t setpoints = 0, engaged_setpoints = 0;
-  bool engaged_at_end = false;
-  int64_t disengagements = 0;  // engaged setpoints followed by a not engaged one
-  std::string last_refusal;    // gpilot-flight's last "refusing to engage: ..." or "disengaged: ...", "" if none
 };
 
 // The vehicle's path for the plot: one point per VEHICLE_STATE.
