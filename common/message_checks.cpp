@@ -196,6 +196,19 @@ std::string check_message(const vehicle_state_t& m) {
                     .reason});
 }
 
+std::string check_message(const autopilot_t& m) {
+  constexpr int64_t kMaxCustomMode = 0xFFFFFFFFLL;  // MAVLink's custom_mode is a uint32
+  constexpr size_t kMaxParamIdLength = 16;          // MAVLink's param_id is char[16]
+  constexpr int kMavStateMax = 8;                   // MAV_STATE_FLIGHT_TERMINATION
+  constexpr int kMavParamTypeMax = 10;              // MAV_PARAM_TYPE_REAL64
+  return first({check_enum("kind", m.kind, autopilot_t::KIND_HEARTBEAT, autopilot_t::KIND_PARAM_VALUE),
+                check_enum("base_mode", m.base_mode, 0, 255), check_enum("system_status", m.system_status, 0, kMavStateMax),
+                check_enum("param_type", m.param_type, 0, kMavParamTypeMax),
+                m.custom_mode < 0 || m.custom_mode > kMaxCustomMode ? "custom_mode not in 0..2^32-1" : "",
+                m.param_id.size() > kMaxParamIdLength ? "param_id longer than 16 characters" : "",
+                Finite()("param_value", m.param_value).reason});
+}
+
 std::string check_message(const ground_truth_t& m) {
   return first({check_enum("gesture", m.gesture, ground_truth_t::GESTURE_REST, ground_truth_t::GESTURE_FURTHER),
                 check_enum("expected_kind", m.expected_kind, hand_obs_t::KIND_NONE, hand_obs_t::KIND_FRONT),

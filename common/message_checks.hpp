@@ -6,6 +6,7 @@
 
 #include "gpilot/config_t.hpp"
 #include "gpilot/flight_control_t.hpp"
+#include "gpilot/autopilot_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
@@ -36,6 +37,7 @@ std::string check_message(const gesture_cmd_t& m);
 std::string check_message(const flight_control_t& m);
 std::string check_message(const flight_setpoint_t& m);
 std::string check_message(const vehicle_state_t& m);
+std::string check_message(const autopilot_t& m);
 std::string check_message(const ground_truth_t& m);
 std::string check_message(const health_t& m);
 std::string check_message(const config_t& m);

@@ -54,6 +54,13 @@ const std::vector<WirePart>& wire_layout<flight_control_t>() {
   static const std::vector<WirePart> l{{P::kBytes, 21}, {P::kString}};
   return l;
 }
+// int64 utime, int64 seq, int8 kind, boolean armed, int16 base_mode, int64 custom_mode, int8 system_status,
+// string param_id, float param_value, int8 param_type
+template <>
+const std::vector<WirePart>& wire_layout<autopilot_t>() {
+  static const std::vector<WirePart> l{{P::kBytes, 29}, {P::kString}, {P::kBytes, 5}};
+  return l;
+}
 // int64 utime, int64 seq, int8 command, float box[4], string source
 template <>
 const std::vector<WirePart>& wire_layout<tracker_init_t>() {

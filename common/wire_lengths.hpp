@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gpilot/autopilot_t.hpp"
 #include "gpilot/config_t.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/health_t.hpp"
@@ -43,6 +44,8 @@ template <>
 const std::vector<WirePart>& wire_layout<image_t>();
 template <>
 const std::vector<WirePart>& wire_layout<config_t>();
+template <>
+const std::vector<WirePart>& wire_layout<autopilot_t>();
 
 template <class Msg>
 std::string check_wire_lengths(const void* data, size_t size) {

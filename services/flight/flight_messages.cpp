@@ -106,4 +106,38 @@ OperatorRequest to_core(const flight_control_t& m) {
   return r;
 }
 
+AutopilotMessage to_core(const autopilot_t& m) {
+  AutopilotMessage a;
+  a.kind = m.kind == autopilot_t::KIND_PARAM_VALUE ? AutopilotMessage::Kind::ParamValue : AutopilotMessage::Kind::Heartbeat;
+  a.armed = m.armed;
+  a.base_mode = m.base_mode;
+  a.custom_mode = m.custom_mode;
+  a.system_status = m.system_status;
+  a.param_id = m.param_id;
+  a.param_value = m.param_value;
+  a.param_type = m.param_type;
+  return a;
+}
+
+autopilot_t to_message(const mavlink::Heartbeat& h, int64_t utime) {
+  autopilot_t m{};
+  m.utime = utime;
+  m.kind = autopilot_t::KIND_HEARTBEAT;
+  m.armed = (h.base_mode & mavlink::kMavModeFlagSafetyArmed) != 0;
+  m.base_mode = h.base_mode;
+  m.custom_mode = h.custom_mode;
+  m.system_status = static_cast<int8_t>(h.system_status);
+  return m;
+}
+
+autopilot_t to_message(const mavlink::ParamValue& v, int64_t utime) {
+  autopilot_t m{};
+  m.utime = utime;
+  m.kind = autopilot_t::KIND_PARAM_VALUE;
+  m.param_id = mavlink::param_name(v.param_id);
+  m.param_value = v.param_value;
+  m.param_type = static_cast<int8_t>(v.param_type);
+  return m;
+}
+
 }  // namespace gpilot

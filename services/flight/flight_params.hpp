@@ -124,6 +124,10 @@ struct MavlinkParams {
   std::string autopilot = "px4";      //!< px4 or ardupilot: which flight mode ENGAGE asks for, how TAKEOFF is sent
   bool set_mode_on_engage = true;     //!< on ENGAGE, ask for PX4 OFFBOARD / ArduPilot GUIDED (MAV_CMD_DO_SET_MODE)
   double param_timeout_s = 1.0;       //!< on ENGAGE, wait this long for the offboard-loss parameter's value
+  // Without a message from the autopilot this long the link is lost and gpilot-flight disengages: three of its
+  // 1 Hz HEARTBEATs missed (one lost datagram is not a lost link; the setpoint is already zero after
+  // flight.stale_timeout_s without its position).
+  double link_timeout_s = 3.0;
   std::string signing_key;            //!< MAVLink 2 signing key file (32 bytes, as gpilot-keygen makes); "" = unsigned
   int signing_link_id = 1;            //!< our link id in signatures
 
@@ -139,6 +143,8 @@ struct MavlinkParams {
     v("set_mode_on_engage", set_mode_on_engage, "on ENGAGE send DO_SET_MODE: PX4 OFFBOARD or ArduPilot GUIDED");
     v("param_timeout_s", param_timeout_s, 0.05, 30.0,
       "on ENGAGE, wait this long for the autopilot's offboard-loss parameter (else refuse), s");
+    v("link_timeout_s", link_timeout_s, 0.5, 60.0,
+      "nothing from the autopilot this long: its link is lost, disengage (re-ENGAGE once it is back), s");
     v("signing_key", signing_key,
       "MAVLink 2 signing key file (32 bytes or 64 hex digits, mode 0600; gpilot-keygen makes one): every frame sent "
       "is signed, only validly signed frames are read. \"\" = unsigned (HEALTH says so)");

@@ -1,14 +1,17 @@
 // The flight stage on a bus: the latest GESTURE_CMD, USER_TRACK, FLIGHT_CONTROL (and VEHICLE_STATE with backend
 // none) in; FLIGHT_SETPOINT at flight.setpoint_rate_hz always (zero with reasons when unsafe), VEHICLE_STATE from
 // the built-in simulator (backend sim) or the autopilot (backend mavlink, MAVLink v2 over UDP: the socket is
-// the adapter's, mavlink/udp_link, not the core's). With MAVLink, ENGAGE first reads the autopilot's
-// offboard-loss failsafe time (mavlink/offboard_loss.hpp). Used by gpilot-flight and gpilot-replay.
+// the adapter's, mavlink/udp_link, not the core's). With MAVLink, what the autopilot says that the stage acts on
+// (HEARTBEAT, PARAM_VALUE) is published on AUTOPILOT as it arrives and taken from that message, and ENGAGE first
+// reads the autopilot's offboard-loss failsafe time (autopilot_watch.hpp): a replay reads the same messages
+// from the log and decides the same. Used by gpilot-flight and gpilot-replay.
 #include "flight_service.hpp"
 
 #include <cmath>
 #include <memory>
 #include <optional>
 
+#include "autopilot_watch.hpp"
 #include "bus_key.hpp"
 #include "flight_bridge.hpp"
 #include "flight_channels.hpp"
@@ -30,8 +33,9 @@ namespace {
 // age is at most one tick (1 / flight.setpoint_rate_hz) shorter than since arrival.
 class FlightService {
  public:
-  FlightService(const Config& config, BusNode& node)
+  FlightService(const Config& config, BusNode& node, VehicleSource vehicle)
       : node_(node),
+        vehicle_source_(vehicle),
         fp_(config.section<FlightParams>("flight")),
         sim_params_(config.section<SimParams>("sim")),
         mav_params_(config.section<MavlinkParams>("mavlink")),
@@ -39,6 +43,10 @@ class FlightService {
     // flight.backend, mavlink.autopilot and mavlink.endpoint were checked before the bus started (the sections'
     // check(), flight_params.hpp): only sim, mavlink and none reach here, with a known autopilot and an endpoint
     // that parses.
+    if (fp_.backend == "mavlink")
+      watch_.emplace(mavlink::offboard_loss_param(mav_params_.autopilot), fp_.max_autopilot_loss_s,
+                     mav_params_.param_timeout_s, mav_params_.link_timeout_s);
+    if (vehicle_source_ == VehicleSource::FromBus) return;  // the log's vehicle and autopilot: nothing to open
     if (fp_.backend == "sim") {
       sim_.emplace(sim_params_);
     } else if (fp_.backend == "mavlink") {
@@ -52,8 +60,6 @@ class FlightService {
           throw ConfigError(std::string("mavlink.signing_key: ") + e.what());
         }
       }
-      gate_.emplace(mavlink::offboard_loss_param(mav_params_.autopilot), fp_.max_autopilot_loss_s,
-                    mav_params_.param_timeout_s);
     }
   }
 
@@ -70,8 +76,11 @@ class FlightService {
       control_utime_ = m.utime;
       control(m);
     });
-    if (fp_.backend == "none") {
+    if (fp_.backend == "none" || vehicle_source_ == VehicleSource::FromBus) {
       subscribe(node_, flight_channels::kVehicleState, [this](const vehicle_state_t& m, int64_t) { vehicle(m); });
+    }
+    if (watch_ && vehicle_source_ == VehicleSource::FromBus) {
+      subscribe(node_, flight_channels::kAutopilot, [this](const autopilot_t& m, int64_t) { watch_->heard(to_core(m)); });
     }
     node_.every(1.0 / fp_.setpoint_rate_hz, [this] { tick(); });
     if (sim_) node_.every(1.0 / sim_params_.rate_hz, [this] { step_sim(); });
@@ -91,47 +100,54 @@ class FlightService {
   void control(const flight_control_t& m) {
     const OperatorRequest r = to_core(m);
     if (operator_.repeat(r)) return;
-    if (gate_ && !gate_check(m, r)) return;
+    if (watch_ && !gate_check(m, r)) return;
     apply_control(m, r);
   }
 
-  // With MAVLink, an ENGAGE waits for the autopilot's offboard-loss parameter (EngageGate): false while it does
-  // (or when it was refused); any other request cancels a pending ENGAGE and goes on.
+  // With MAVLink, an ENGAGE waits for the autopilot's offboard-loss parameter (AutopilotWatch, from the next
+  // tick): false while it does (or when it was refused); any other request cancels a pending ENGAGE and goes on.
   bool gate_check(const flight_control_t& m, const OperatorRequest& r) {
     if (m.command != flight_control_t::COMMAND_ENGAGE) {
-      gate_->cancel();
+      watch_->cancel();
       return true;
     }
     if (refused_ && refused_->utime == r.utime && refused_->seq == r.seq && refused_->source == r.source) return false;
-    // The gate times the autopilot's answer on the monotonic clock (a wall-clock step must not stretch it):
-    // MAVLink is live only, a replay runs with backend none.
-    if (gate_->engage_requested(monotonic_utime()) == mavlink::EngageGate::Action::Request) {
-      pending_engage_ = m;
-      link_->send(session_->param_request_read(gate_->param()));
-    }
+    if (!watch_->pending()) pending_engage_ = m;
+    watch_->engage_requested();
     return false;
   }
 
-  // What the gate says, from poll_mavlink (an answer) and tick (time).
-  void gate_act(mavlink::EngageGate::Action a) {
-    using A = mavlink::EngageGate::Action;
-    if (a == A::Request) link_->send(session_->param_request_read(gate_->param()));
-    if (a == A::Engage) {
-      log_info("the autopilot's %s is %.2f s (<= %.2f): engaging", gate_->param().c_str(), gate_->last_value(),
+  // What the watch decided at this tick (on the tick's time, from the AUTOPILOT messages the tick had).
+  void watch_act(const AutopilotWatch::Decision& d) {
+    if (d.request_param && session_) link_->send(session_->param_request_read(watch_->param()));
+    if (d.engage) {
+      log_info("the autopilot's %s is %.2f s (<= %.2f): engaging", watch_->param().c_str(), watch_->last_value(),
                fp_.max_autopilot_loss_s);
       refused_.reset();
+      not_engaged_why_.clear();
       apply_control(pending_engage_, to_core(pending_engage_));
     }
-    if (a == A::Refuse) {
-      const std::string why = "refusing to engage: " + gate_->why();
-      log_warn("%s", why.c_str());
+    if (!d.refuse.empty()) {
       refused_ = to_core(pending_engage_);
       // An ENGAGE while engaged re-reads the parameter too: changed on the autopilot since, the answer now
       // stands, and the vehicle hovers (as a DISENGAGE would leave it).
-      in_.engaged = false;
-      node_.reject(why);
-      node_.set_state(health_t::STATE_DEGRADED, why);
+      disengage("refusing to engage: " + d.refuse);
     }
+    if (!d.link_lost.empty() && in_.engaged) disengage("disengaged: " + d.link_lost);
+    else if (!d.link_lost.empty()) node_.set_state(health_t::STATE_DEGRADED, d.link_lost);
+    if (d.link_back) {
+      log_info("the autopilot's link is back (ENGAGE again to fly)");
+      node_.set_state(health_t::STATE_OK, "the autopilot's link is back, not engaged");
+    }
+  }
+
+  // Hover from this tick on, and say why (stderr, HEALTH).
+  void disengage(const std::string& why) {
+    log_warn("%s", why.c_str());
+    in_.engaged = false;
+    not_engaged_why_ = why;
+    node_.reject(why);
+    node_.set_state(health_t::STATE_DEGRADED, why);
   }
 
   void apply_control(const flight_control_t& m, const OperatorRequest& r) {
@@ -173,8 +189,8 @@ class FlightService {
   }
 
   void tick() {
-    if (gate_) gate_act(gate_->on_time(monotonic_utime()));
     in_.now = node_.now();
+    if (watch_) watch_act(watch_->tick(in_.now));
     if (new_command_) in_.command_received = in_.now;
     if (new_track_) in_.track_received = in_.now;
     if (new_vehicle_) in_.vehicle_received = in_.now;
@@ -207,7 +223,9 @@ class FlightService {
         node_.reject("MAVLink: a datagram from " + link_->last_foreign() + ", not the autopilot at " + mav_params_.endpoint);
       for (int64_t i = rejected_before; i < session_->parser().rejected(); ++i)
         node_.reject(std::string("MAVLink: ") + session_->parser().last_reject());
-      for (const auto& v : session_->take_param_values()) gate_act(gate_->on_param_value(v));
+      // What the autopilot said, on the bus as it arrived and taken from there (as a replay takes it).
+      for (const auto& h : session_->take_heartbeats()) autopilot(to_message(h, now));
+      for (const auto& v : session_->take_param_values()) autopilot(to_message(v, now));
       if (state) {
         const vehicle_state_t m = to_message(*state, vehicle_state_t::SOURCE_MAVLINK);
         publish(node_, flight_channels::kVehicleState, m);
@@ -216,9 +234,19 @@ class FlightService {
     }
   }
 
+  void autopilot(autopilot_t m) {
+    m.seq = ++autopilot_seq_;
+    publish(node_, flight_channels::kAutopilot, m);
+    watch_->heard(to_core(m));
+  }
+
   void report_link() {
     const int64_t now = node_.now();
-    if (!session_->heard_autopilot())
+    if (!in_.engaged && !not_engaged_why_.empty())
+      node_.set_state(health_t::STATE_DEGRADED, not_engaged_why_);  // the last refusal or loss stands until an engage
+    else if (!watch_->link_up() && watch_->ever_heard())
+      node_.set_state(health_t::STATE_DEGRADED, "the autopilot's link is lost (" + mav_params_.endpoint + ")");
+    else if (!session_->heard_autopilot())
       node_.set_state(health_t::STATE_DEGRADED, "no autopilot HEARTBEAT from " + mav_params_.endpoint);
     else if (!in_.vehicle || now - in_.vehicle_received > kMicrosPerSecond)
       node_.set_state(health_t::STATE_DEGRADED, "no LOCAL_POSITION_NED from " + mav_params_.endpoint + " for 1 s");
@@ -229,6 +257,7 @@ class FlightService {
   }
 
   BusNode& node_;
+  VehicleSource vehicle_source_;
   FlightParams fp_;
   SimParams sim_params_;
   MavlinkParams mav_params_;
@@ -243,15 +272,17 @@ class FlightService {
   std::optional<mavlink::MavlinkSession> session_;
   OperatorState operator_;
   int setpoints_since_engage_ = 0;
-  std::optional<mavlink::EngageGate> gate_;   // MAVLink only
+  std::optional<AutopilotWatch> watch_;       // MAVLink only (live or replayed)
+  int64_t autopilot_seq_ = 0;                 // AUTOPILOT messages published
+  std::string not_engaged_why_;               // the last refusal or link loss, until an ENGAGE goes through
   flight_control_t pending_engage_{};         // the ENGAGE waiting for the gate
   std::optional<OperatorRequest> refused_;    // the last ENGAGE refused (its repeats are not asked again)
 };
 
 }  // namespace
 
-std::shared_ptr<void> start_flight_service(const Config& config, BusNode& node) {
-  auto service = std::make_shared<FlightService>(config, node);
+std::shared_ptr<void> start_flight_service(const Config& config, BusNode& node, VehicleSource vehicle) {
+  auto service = std::make_shared<FlightService>(config, node, vehicle);
   service->start();
   return service;
 }

@@ -1,6 +1,6 @@
 // gpilot-flight: the only process that moves the vehicle (the stage itself: flight_service.cpp, which
 // gpilot-replay runs too). Reads GESTURE_CMD, USER_TRACK, FLIGHT_CONTROL (and VEHICLE_STATE with backend none);
-// writes FLIGHT_SETPOINT, VEHICLE_STATE, HEALTH.
+// writes FLIGHT_SETPOINT, VEHICLE_STATE, AUTOPILOT (backend mavlink), HEALTH.
 // Watched: READY=1 once running and WATCHDOG=1 from the loop that publishes the setpoints (sd_notify; systemd's
 // WatchdogSec or gpilot-launch's watchdog_s), so a frozen loop is a silent watchdog: killed and restarted.
 #include "flight_service.hpp"
@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
                  "unless ENGAGED with fresh, valid inputs and a tracked user. Backends (flight.backend): sim (built-in\n"
                  "quadrotor, publishes VEHICLE_STATE), mavlink (MAVLink v2 over UDP, mavlink.endpoint), none.\n"
                  "Reads GESTURE_CMD, USER_TRACK, FLIGHT_CONTROL (+ VEHICLE_STATE with backend none); writes\n"
-                 "FLIGHT_SETPOINT, VEHICLE_STATE, HEALTH. Config sections: flight, sim, mavlink.");
+                 "FLIGHT_SETPOINT, VEHICLE_STATE, AUTOPILOT (what the autopilot said: HEARTBEAT, PARAM_VALUE), HEALTH.\n"
+                 "Config sections: flight, sim, mavlink.");
   return cli.run_node(argc, argv, [](const Config& config, BusNode& node) {
     const auto stage = start_flight_service(config, node);
     // The watchdog: its period comes from the supervisor (WATCHDOG_USEC); pinged at a quarter of it by a timer of

@@ -43,7 +43,7 @@ void one(const uint8_t* data, size_t size) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // First byte: the channel's type (a BusNode subscription decodes one type); the rest is the datagram.
   if (size == 0) return 0;
-  const uint8_t type = data[0] % 11;
+  const uint8_t type = data[0] % 12;
   ++data, --size;
   switch (type) {
     case 0: one<gpilot::image_t>(data, size); break;
@@ -56,7 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     case 7: one<gpilot::vehicle_state_t>(data, size); break;
     case 8: one<gpilot::ground_truth_t>(data, size); break;
     case 9: one<gpilot::health_t>(data, size); break;
-    default: one<gpilot::config_t>(data, size); break;
+    case 10: one<gpilot::config_t>(data, size); break;
+    default: one<gpilot::autopilot_t>(data, size); break;
   }
   return 0;
 }

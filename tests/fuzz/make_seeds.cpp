@@ -12,6 +12,7 @@
 
 #include "gpilot/config_t.hpp"
 #include "gpilot/flight_control_t.hpp"
+#include "gpilot/autopilot_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
@@ -110,6 +111,12 @@ void decode_seeds() {
   cfg.pid = 4242;
   cfg.yaml = "decide:\n  buffer_size: 60\n";
   write("decode", "config", typed(10, encode(cfg)));
+  autopilot_t ap{};
+  ap.kind = autopilot_t::KIND_PARAM_VALUE;
+  ap.param_id = "COM_OF_LOSS_T";
+  ap.param_value = 0.5f;
+  ap.param_type = 9;  // MAV_PARAM_TYPE_REAL32
+  write("decode", "autopilot", typed(11, encode(ap)));
   // The one-datagram kills: a string length of 0 and of -1 (FLIGHT_CONTROL, 33 bytes).
   Bytes fc_bytes = encode(fc);
   const size_t len_at = fc_bytes.size() - fc.source.size() - 1 - 4;

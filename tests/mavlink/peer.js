@@ -7,14 +7,16 @@
 //   node peer.js encode   stdin: one JSON object per line {msg, seq, sysid, compid, fields: {camelCaseName: v}}
 //                         stdout: the v2 frame as one hex line
 //   node peer.js table ID...  stdout: {ID: {name, crcExtra, length}} from node-mavlink's registry
-//   node peer.js vehicle PORT [NAME=VALUE ...]
+//   node peer.js vehicle PORT [--quiet-at=S --quiet-for=S] [NAME=VALUE ...]
 //                         a test vehicle on UDP 127.0.0.1:PORT (the one mode with a socket; run it inside a
 //                         network namespace): answers PARAM_REQUEST_READ from the NAME=VALUE list (REAL32; a
 //                         name not listed gets no answer), flies the body-frame velocity of the last
 //                         SET_POSITION_TARGET_LOCAL_NED, sends HEARTBEAT and LOCAL_POSITION_NED at 20 Hz to
 //                         whoever wrote last, and applies its own offboard-loss failsafe as PX4 does: no
 //                         setpoint for COM_OF_LOSS_T (or GUID_TIMEOUT) seconds while moving -> hold (velocity 0).
-//                         stdout: one JSON event a line: listening, param_request, moving, failsafe.
+//                         With --quiet-at, from S seconds after listening and for --quiet-for seconds it
+//                         neither sends nor reads anything (a lost link), then goes on.
+//                         stdout: one JSON event a line: listening, param_request, moving, failsafe, quiet, back.
 'use strict';
 const readline = require('readline');
 const { PassThrough } = require('stream');
@@ -83,10 +85,21 @@ function table(ids) {
 function vehicle(port, assignments) {
   const dgram = require('dgram');
   const params = {};
+  let quietAt = Infinity, quietFor = 0;
   for (const a of assignments) {
     const [k, v] = a.split('=');
-    params[k] = Number(v);
+    if (k === '--quiet-at') quietAt = Number(v);
+    else if (k === '--quiet-for') quietFor = Number(v);
+    else params[k] = Number(v);
   }
+  let started = 0, quiet = false;
+  const isQuiet = () => {  // the link down between quietAt and quietAt + quietFor (s after listening)
+    const s = (Date.now() - started) / 1000;
+    const now = started > 0 && s >= quietAt && s < quietAt + quietFor;
+    if (now !== quiet) out({ event: now ? 'quiet' : 'back' });
+    quiet = now;
+    return now;
+  };
   const lossS = params.COM_OF_LOSS_T ?? params.GUID_TIMEOUT ?? Infinity;
   const out = (o) => process.stdout.write(json({ t: Date.now() / 1000, ...o }) + '\n');
   const proto = new MavLinkProtocolV2(1, 1);
@@ -95,7 +108,7 @@ function vehicle(port, assignments) {
   const reader = input.pipe(new MavLinkPacketSplitter()).pipe(new MavLinkPacketParser());
   let peer = null, seq = 0, lastSetpoint = 0, velocity = [0, 0, 0], moving = false;
   const position = [0, 0, -1.5];
-  const send = (msg) => { if (peer) sock.send(proto.serialize(msg, seq++ & 255), peer.port, peer.address); };
+  const send = (msg) => { if (peer && !isQuiet()) sock.send(proto.serialize(msg, seq++ & 255), peer.port, peer.address); };
   reader.on('data', (packet) => {
     const clazz = REGISTRY[packet.header.msgid];
     if (!clazz) return;
@@ -119,7 +132,7 @@ function vehicle(port, assignments) {
       send(v);
     }
   });
-  sock.on('message', (msg, rinfo) => { peer = rinfo; input.write(msg); });
+  sock.on('message', (msg, rinfo) => { if (isQuiet()) return; peer = rinfo; input.write(msg); });
   setInterval(() => {  // the failsafe, checked every 10 ms
     if (moving && Date.now() - lastSetpoint > lossS * 1000) {
       out({ event: 'failsafe', since_setpoint_s: (Date.now() - lastSetpoint) / 1000, loss_s: lossS, velocity });
@@ -141,7 +154,7 @@ function vehicle(port, assignments) {
     [p.vx, p.vy, p.vz] = velocity;
     send(p);
   }, 50);
-  sock.bind(port, '127.0.0.1', () => out({ event: 'listening', port, params }));
+  sock.bind(port, '127.0.0.1', () => { started = Date.now(); out({ event: 'listening', port, params }); });
 }
 
 const mode = process.argv[2];

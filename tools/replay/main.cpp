@@ -113,13 +113,12 @@ OutputComparison compare_outputs(const std::vector<std::vector<uint8_t>>& replay
   return c;
 }
 
-// gpilot-flight over a log: the same service, its vehicle states from the log (backend none: the vehicle is
-// not simulated or flown again, the bridge's decisions are replayed), its setpoint timer fired at each recorded
-// FLIGHT_SETPOINT's utime with the command and track that setpoint names (ReplayTicks).
+// gpilot-flight over a log: the same service, its vehicle states and what the autopilot said from the log
+// (VehicleSource::FromBus: the vehicle is not simulated or flown again, the bridge's, the engage gate's and the
+// link watch's decisions are replayed), its setpoint timer fired at each recorded FLIGHT_SETPOINT's utime with
+// the command and track that setpoint names (ReplayTicks).
 std::shared_ptr<void> start_flight_replayed(const Config& config, BusNode& node) {
-  Config replayed = Config::from_string(effective_config_yaml(config), "gpilot-flight's config with backend none");
-  replayed.set("flight.backend=none");
-  return start_flight_service(replayed, node);
+  return start_flight_service(config, node, VehicleSource::FromBus);
 }
 
 ReplayTicks flight_ticks() {
@@ -139,12 +138,12 @@ ReplayTicks flight_ticks() {
       {{kGestureCmd.name, -1}, {kUserTrack.name, 0}, {kFlightControl.name, 0}});
 }
 
-// The names a stage declares with this role (services/<stage>/<stage>_channels.hpp), but `except`.
+// The names a stage declares with this role (services/<stage>/<stage>_channels.hpp), but those in `except`.
 template <size_t N>
-std::vector<std::string> declared(const ChannelUse (&uses)[N], ChannelRole role, const std::string& except = "") {
+std::vector<std::string> declared(const ChannelUse (&uses)[N], ChannelRole role, const std::set<std::string>& except = {}) {
   std::vector<std::string> names;
   for (const auto& u : uses)
-    if (u.role == role && u.name != except) names.emplace_back(u.name);
+    if (u.role == role && !except.count(u.name)) names.emplace_back(u.name);
   return names;
 }
 
@@ -168,9 +167,9 @@ const std::map<std::string, StageEntry>& stages() {
       {"hands", {start_hands_service, declared(hc::kUses, R::In), declared(hc::kUses, R::Out),
                  {{hc::kCamera.name, hc::kHandObs.name}}, nullptr, {hc::kCamera.name, hc::kUserTrack.name}}},
       {"decide", {start_decide_service, declared(dc::kUses, R::In), declared(dc::kUses, R::Out)}},
-      // With backend none the vehicle is the log's: its VEHICLE_STATE is an input here, not an output.
+      // The vehicle and the autopilot are the log's: VEHICLE_STATE and AUTOPILOT are inputs here, not outputs.
       {"flight", {start_flight_replayed, declared(fc::kUses, R::In),
-                  declared(fc::kUses, R::Out, fc::kVehicleState.name), {}, flight_ticks}},
+                  declared(fc::kUses, R::Out, {fc::kVehicleState.name, fc::kAutopilot.name}), {}, flight_ticks}},
   };
   return table;
 }
@@ -184,9 +183,9 @@ int main(int argc, char** argv) {
                  "Run a stage's code over an LCM log, faster than real time; write a log with the original inputs and\n"
                  "the new outputs; with --check, print where the new outputs differ from the recorded ones.\n"
                  "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
-                 "decide (HAND_OBS -> GESTURE_CMD), flight (GESTURE_CMD, USER_TRACK, VEHICLE_STATE, FLIGHT_CONTROL ->\n"
-                 "FLIGHT_SETPOINT: gpilot-flight's service with its timer fired at each recorded setpoint's time; the\n"
-                 "vehicle's states come from the log; alone, not in a chain), or a chain such as tracker,hands,decide.");
+                 "decide (HAND_OBS -> GESTURE_CMD), flight (GESTURE_CMD, USER_TRACK, VEHICLE_STATE, AUTOPILOT,\n"
+                 "FLIGHT_CONTROL -> FLIGHT_SETPOINT: gpilot-flight's service with its timer fired at each recorded\n"
+                 "setpoint's time; the vehicle's states and what the autopilot said come from the log; alone, not in a chain), or a chain such as tracker,hands,decide.");
   std::string in_path, out_path, stage_arg;
   bool check = false, inputs_only = false, all_frames = false, recorded_outputs = false;
   double from_s = 0, to_s = 0;

@@ -138,6 +138,11 @@ void RunAnalyzer::on_command(const gesture_cmd_t& m, int64_t recv_utime) {
 }
 
 void RunAnalyzer::on_setpoint(const flight_setpoint_t& m, int64_t recv_utime) {
+  Engagement& e = engagement_;
+  e.disengagements += e.engaged_at_end && !m.engaged;
+  ++e.setpoints;
+  e.engaged_setpoints += m.engaged;
+  e.engaged_at_end = m.engaged;
   if (m.seq < 0 || setpoint_seen_.count(m.seq)) return;  // the first setpoint that follows each frame
   setpoint_seen_[m.seq] = true;
   const auto f = frames_by_seq_.find(m.seq);
@@ -174,6 +179,9 @@ void RunAnalyzer::on_truth(const ground_truth_t& m, int64_t) {
 
 void RunAnalyzer::on_health(const health_t& m, int64_t) {
   health_[m.name].push_back(m);
+  if (m.name == "gpilot-flight")
+    for (const std::string& said : {m.state_detail, m.last_reject_reason})
+      if (said.rfind("refusing to engage", 0) == 0 || said.rfind("disengaged", 0) == 0) engagement_.last_refusal = said;
   note_seq("HEALTH", true, m.name + " " + std::to_string(m.pid), m.seq);
 }
 
@@ -191,6 +199,7 @@ Summary RunAnalyzer::summary() const {
   s.pipeline_cmd = latency(pipe_cmd_);
   s.pipeline_setpoint = latency(pipe_sp_);
   s.unmatched_commands = unmatched_;
+  s.engagement = engagement_;
 
   for (const auto& [name, reports] : health_) {
     StageHealth h;
@@ -406,6 +415,16 @@ json summary_json(const Summary& s, const json& extra) {
        "gesture change to the first GESTURE_CMD with the new command; old_command_frames: frames from each change to "
        "it; false_at_rest: a motion commanded while the user rests; confused: another motion than the one asked"}};
   j["vehicle"] = {{"states", s.vehicle_states}, {"path_length_m", sig6(s.path_length_m)}};
+  const Engagement& e = s.engagement;
+  j["flight"] = {{"engaged", e.engaged_setpoints > 0},
+                 {"setpoints", e.setpoints},
+                 {"engaged_setpoints", e.engaged_setpoints},
+                 {"engaged_at_end", e.engaged_at_end},
+                 {"disengagements", e.disengagements},
+                 {"refused_or_lost", e.last_refusal},
+                 {"definition",
+                  "engaged: any FLIGHT_SETPOINT engaged; refused_or_lost: gpilot-flight's last refusal of an ENGAGE or "
+                  "loss of the autopilot's link (its HEALTH), \"\" if none"}};
   json channels = json::object();
   for (const auto& [channel, g] : s.gaps)
     channels[channel] = {{"messages", g.messages},
@@ -500,6 +519,9 @@ std::string summary_table(const Summary& s) {
          static_cast<long long>(b.evaluated), acc, static_cast<long long>(b.track.on_user), b.track.mean_iou());
   }
   line("\nvehicle           %lld states, path %.2f m\n", static_cast<long long>(s.vehicle_states), s.path_length_m);
+  const Engagement& e = s.engagement;
+  line("engaged           %lld of %lld setpoints%s%s\n", static_cast<long long>(e.engaged_setpoints),
+       static_cast<long long>(e.setpoints), e.last_refusal.empty() ? "" : "; ", e.last_refusal.c_str());
   return t;
 }
 

@@ -110,6 +110,15 @@ struct RangeBand {
   TrackVsTruth track;
 };
 
+// Whether the operator's ENGAGE took: from FLIGHT_SETPOINT's engaged flag, and gpilot-flight's HEALTH for why not
+// (an ENGAGE refused by the autopilot's answer or its silence, a lost link).
+struct Engagement {
+  int64_t setpoints = 0, engaged_setpoints = 0;
+  bool engaged_at_end = false;
+  int64_t disengagements = 0;  // engaged setpoints followed by a not engaged one
+  std::string last_refusal;    // gpilot-flight's last "refusing to engage: ..." or "disengaged: ...", "" if none
+};
+
 struct Summary {
   int64_t frames = 0;
   double duration_s = 0;  // first to last CAMERA utime
@@ -130,6 +139,7 @@ struct Summary {
   Score reaction;
   int64_t vehicle_states = 0;
   double path_length_m = 0;
+  Engagement engagement;
   std::map<std::string, ChannelGaps> gaps;  // by channel
   int64_t logger_lost() const;              // missing on counter channels: messages the logger lost
 };
@@ -192,6 +202,7 @@ class RunAnalyzer {
   int64_t track_frames_ = 0;
   std::vector<int64_t> lat_cmd_, lat_sp_, pipe_cmd_, pipe_sp_;
   std::map<int64_t, bool> setpoint_seen_;
+  Engagement engagement_;
   std::map<std::string, std::vector<health_t>> health_;
   std::vector<TrajectoryPoint> path_;
   int current_mode_ = -1;

@@ -113,6 +113,7 @@ std::optional<VehicleState> MavlinkSession::on_datagram(const uint8_t* data, siz
         if (h.autopilot == kMavAutopilotInvalid) return;
         heard_ = true;
         state_.armed = (h.base_mode & kMavModeFlagSafetyArmed) != 0;
+        heartbeats_.push_back(h);
         break;
       }
       case Attitude::kId: {

@@ -56,6 +56,8 @@ class MavlinkSession {
   std::optional<CommandAck> last_ack() const { return last_ack_; }
   // The PARAM_VALUEs from the autopilot since the last call, oldest first.
   std::vector<ParamValue> take_param_values() { return std::exchange(param_values_, {}); }
+  // The autopilot's HEARTBEATs since the last call, oldest first (not a GCS's or a camera's on its system id).
+  std::vector<Heartbeat> take_heartbeats() { return std::exchange(heartbeats_, {}); }
 
  private:
   template <class M>
@@ -76,6 +78,7 @@ class MavlinkSession {
   bool heard_ = false;
   std::optional<CommandAck> last_ack_;
   std::vector<ParamValue> param_values_;
+  std::vector<Heartbeat> heartbeats_;
 };
 
 }  // namespace gpilot::mavlink

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "bus_node.hpp"
+#include "gpilot/autopilot_t.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/health_t.hpp"
@@ -172,12 +173,18 @@ TEST(WireLengths, EachLayoutWalksItsTypesEncodingExactly) {
   config_t cf{};
   cf.process = "gpilot-decide";
   cf.yaml = "decide:\n  lambda4: 0.25\n";
+  autopilot_t ap{};
+  ap.kind = autopilot_t::KIND_PARAM_VALUE;
+  ap.param_id = "COM_OF_LOSS_T";
   // THEN each layout ends exactly at the end of its encoding, and one byte less is noticed
   EXPECT_EQ(check_wire_lengths<flight_control_t>(encoded(c).data(), encoded(c).size()), "");
   EXPECT_EQ(check_wire_lengths<tracker_init_t>(encoded(t).data(), encoded(t).size()), "");
   EXPECT_EQ(check_wire_lengths<health_t>(encoded(h).data(), encoded(h).size()), "");
   EXPECT_EQ(check_wire_lengths<image_t>(encoded(im).data(), encoded(im).size()), "");
   EXPECT_EQ(check_wire_lengths<config_t>(encoded(cf).data(), encoded(cf).size()), "");
+  EXPECT_EQ(check_wire_lengths<autopilot_t>(encoded(ap).data(), encoded(ap).size()), "");
+  const auto ab = encoded(ap);
+  EXPECT_EQ(check_wire_lengths<autopilot_t>(ab.data(), ab.size() - 1), "truncated");
   const auto hb = encoded(h);
   EXPECT_EQ(check_wire_lengths<health_t>(hb.data(), hb.size() - 1), "truncated");
   // AND a type without strings or arrays has no layout to check
@@ -207,7 +214,7 @@ TEST(WireLengths, AnImageWhoseSizeSaysTwoGigabytesIsRejectedBeforeAnythingIsAllo
 }
 
 TEST(WireLengths, EveryLcmtypeWithAStringOrAnArrayHasALayout) {
-  // The .lcm files say which types have variable-length fields: exactly the five with a layout.
+  // The .lcm files say which types have variable-length fields: exactly the six with a layout.
   std::set<std::string> variable;
   for (const auto& f : std::filesystem::directory_iterator(std::string(GPILOT_SOURCE_DIR) + "/lcmtypes")) {
     if (f.path().extension() != ".lcm") continue;
@@ -217,7 +224,8 @@ TEST(WireLengths, EveryLcmtypeWithAStringOrAnArrayHasALayout) {
     while (std::getline(in, line))
       if (std::regex_search(line, field)) variable.insert(f.path().stem().string());
   }
-  EXPECT_EQ(variable, (std::set<std::string>{"config_t", "flight_control_t", "health_t", "image_t", "tracker_init_t"}))
+  EXPECT_EQ(variable, (std::set<std::string>{"autopilot_t", "config_t", "flight_control_t", "health_t", "image_t",
+                                            "tracker_init_t"}))
       << "a type with a string or a variable array needs its layout in common/wire_lengths.cpp";
 }
 
