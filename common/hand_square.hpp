@@ -1,6 +1,6 @@
-// The hand square of a user box, and whether the body centre with a hand square around it lies in the image.
-// Shared by the hands stage (hand_geometry) and the synthetic world's ground truth (gesture_truth.hpp): both
-// must agree on when a hand in front can be judged (hands.needs_body_centre) and which hands the border cuts.
+// The paper's hand square (side = a ratio of the user box width) and whether the body centre with a hand square
+// around it lies in the image. Shared by the hands stage (hand_geometry) and the synthetic world's ground truth
+// (gesture_truth.hpp), each with its own ratios: both judge alike which hands the image border cuts.
 #pragma once
 
 #include <algorithm>
@@ -8,15 +8,13 @@
 
 #include <opencv2/core.hpp>
 
-#include "hands/hands_params.hpp"
-
 namespace gpilot {
 
-// Side in pixels: hand_square_ratio x box width, at least 1, capped at what the image holds (beyond that a larger
-// square changes nothing, while a hostile 1e6 px box would size one of gigabytes).
-inline int hand_square_side(const HandsParams& p, double box_width, cv::Size image) {
+// Side in pixels: ratio x box width, at least 1, capped at what the image holds (beyond that a larger square
+// changes nothing, while a hostile 1e6 px box would size one of gigabytes).
+inline int hand_square_side(double ratio, double box_width, cv::Size image) {
   const double image_side = std::max(image.width, image.height);
-  return std::max(1, static_cast<int>(std::lround(std::min(box_width * p.hand_square_ratio, 2 * image_side + 1))));
+  return std::max(1, static_cast<int>(std::lround(std::min(box_width * ratio, 2 * image_side + 1))));
 }
 
 // The skin pixels Alg. 1 or 2 need (more than this): the paper's count, or `share` of the hand square's area where
@@ -26,10 +24,9 @@ inline int min_hand_skin(int paper, double share, int side) {
   return share > 0 && square < paper ? static_cast<int>(square) : paper;
 }
 
-// Where the neck below a known face ends (hands.neck_in_faces face heights below its bottom): the face band
-// reaches at least this row, in the stage (hand_geometry) and in the ground truth alike.
-inline double neck_end_y(const HandsParams& p, double face_y, double face_height) {
-  return face_y + face_height * (1.0 + p.neck_in_faces);
+// Where the neck below a known face ends: neck_in_faces face heights below its bottom.
+inline double neck_end_y(double neck_in_faces, double face_y, double face_height) {
+  return face_y + face_height * (1.0 + neck_in_faces);
 }
 
 // The square of side `side` centred at p lies wholly in the image.

@@ -85,11 +85,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
   try {
     switch (o.kind) {
       case CaptureOptions::Kind::Synthetic: {
-        TruthRules rules;
-        rules.tracker = config.section<TrackerParams>("tracker");
-        rules.hands = config.section<HandsParams>("hands");
-        rules.decide = config.section<DecideParams>("decide");
-        world = std::make_unique<SyntheticWorld>(p.synthetic, Scenario::load(o.source), o.seed, rules);
+        world = std::make_unique<SyntheticWorld>(p.synthetic, Scenario::load(o.source), o.seed);
         fps = p.synthetic.fps;
         char what[512];
         std::snprintf(what, sizeof what, "synthetic scenario '%s' (%s, %g s @ %g fps)", world->scenario().name().c_str(),

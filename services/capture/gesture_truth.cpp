@@ -8,7 +8,7 @@
 #include "body_proportions.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/hand_obs_t.hpp"
-#include "hands/hand_square.hpp"
+#include "hand_square.hpp"
 
 namespace gpilot {
 namespace {
@@ -19,42 +19,35 @@ bool inside(const cv::Point2f& p, float x0, float y0, float x1, float y1) {
 
 }  // namespace
 
-cv::Rect2f user_box_from_face(const cv::Rect2f& face, const TrackerParams& t) {
-  const float w = static_cast<float>(face.width * t.body_width_in_faces);
-  const float h = static_cast<float>(face.height * t.body_height_in_faces);
-  const float cx = face.x + face.width * 0.5f;
-  return {cx - 0.5f * w, static_cast<float>(face.y - t.body_top_in_faces * face.height), w, h};
-}
-
 ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Point2f, 2>& hands,
-                                 const cv::Size& image, const TruthRules& rules, float hand_size) {
-  const HandsParams& hp = rules.hands;
+                                 const cv::Size& image, float hand_size) {
+  using namespace truth_rules;
   ExpectedCommand e;
   const float cx = box.x + 0.5f * box.width;
-  e.shoulder_centre = {cx, static_cast<float>(box.y + hp.shoulder_centre_ratio * box.height)};
-  e.body_centre = {cx, static_cast<float>(box.y + hp.body_centre_ratio * box.height)};
+  e.shoulder_centre = {cx, static_cast<float>(box.y + kShoulderCentreRatio * box.height)};
+  e.body_centre = {cx, static_cast<float>(box.y + kBodyCentreRatio * box.height)};
   e.kind = hand_obs_t::KIND_NONE;
   e.mode = gesture_cmd_t::MODE_HOVER;
   const float x1 = box.x + box.width, y1 = box.y + box.height;
-  // As the stage (hands.needs_body_centre): with the body centre out of view (the drone high and close, the hips
-  // below the frame) no hand in front is judged, nor a hand below the shoulders whose square the border cuts
-  // wherever it sits on the hand (the stage's hand pixel is the hand's outer edge, not its centre: a DOWN hand
-  // whose centre's square the border cut was seen and flown, and judged a false DOWN).
-  const int side = hand_square_side(hp, box.width, image);
-  const bool cut_body = hp.needs_body_centre && !square_in_view(e.body_centre, side, image);
+  // With the body centre out of view (the drone high and close, the hips below the frame) no hand in front can
+  // be judged, nor a hand below the shoulders whose square the border cuts wherever it sits on the hand (the
+  // stage's hand pixel is the hand's outer edge, not its centre: a DOWN hand whose centre's square the border
+  // cut was seen and flown, and judged a false DOWN).
+  const int side = hand_square_side(kHandSquareRatio, box.width, image);
+  const bool cut_body = !square_in_view(e.body_centre, side, image);
   const auto border_cut = [&](const cv::Point2f& p) {
     return cut_body && p.y > e.shoulder_centre.y && square_cut_by_side_or_bottom(p, side, image, 0.5f * std::max(0.0f, hand_size));
   };
 
-  // Alg. 1: a hand outside the box (but inside the search rectangle and the image).
-  const float rx0 = static_cast<float>(std::max(0.0, box.x - hp.roi_extend_side * box.width));
-  const float rx1 = static_cast<float>(std::min<double>(image.width, x1 + hp.roi_extend_side * box.width));
-  const float ry0 = static_cast<float>(std::max(0.0, box.y - hp.roi_extend_top * box.height));
-  const float ry1 = static_cast<float>(std::min<double>(image.height, y1 + hp.roi_extend_bottom * box.height));
+  // Alg. 1: a hand outside the box (but within an arm's reach of it and in the image).
+  const float rx0 = static_cast<float>(std::max(0.0, box.x - kReachSide * box.width));
+  const float rx1 = static_cast<float>(std::min<double>(image.width, x1 + kReachSide * box.width));
+  const float ry0 = static_cast<float>(std::max(0.0, box.y - kReachTop * box.height));
+  const float ry1 = static_cast<float>(std::min<double>(image.height, y1 + kReachBottom * box.height));
   double best = -std::numeric_limits<double>::infinity();
   for (const auto& p : hands) {
     if (inside(p, box.x, box.y, x1, y1) || !inside(p, rx0, ry0, rx1, ry1) || border_cut(p)) continue;
-    const double score = std::fabs(e.shoulder_centre.x - p.x) + hp.lambda2 * (e.shoulder_centre.y - p.y);
+    const double score = std::fabs(e.shoulder_centre.x - p.x) + kLambda2 * (e.shoulder_centre.y - p.y);
     if (score > best) {
       best = score;
       e.kind = hand_obs_t::KIND_OUT;
@@ -64,7 +57,7 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   if (e.kind == hand_obs_t::KIND_OUT) {
     float x = e.vector.x;
     const float y = e.vector.y;
-    if (std::fabs(y) > std::fabs(rules.decide.lambda4 * x)) {
+    if (std::fabs(y) > std::fabs(kLambda4 * x)) {
       x = 0.0f;
       e.mode = y < 0 ? gesture_cmd_t::MODE_UP : gesture_cmd_t::MODE_DOWN;
     } else {
@@ -74,17 +67,13 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
     return e;
   }
 
-  // Alg. 2: a hand inside the box, in the band left after removing face/neck and legs, near the midline.
+  // Alg. 2: a hand inside the box, below the face and neck and above the legs, near the midline. The box is made
+  // from the true face with the preset ratios, so that face is the box's own head.
   if (cut_body) return e;
-  // As the stage with the user's face known (hands.neck_in_faces): the rows down to neck_in_faces face heights
-  // below the face are neck. The truth's box is made from the true face (user_box_from_face), so that face is
-  // the box's own head.
-  float band0 = static_cast<float>(box.y + hp.face_remove_ratio * box.height);
-  if (hp.neck_in_faces > 0) {
-    const cv::Rect2d face = face_from_body(box, rules.tracker.body());
-    band0 = std::max(band0, static_cast<float>(neck_end_y(hp, face.y, face.height)));
-  }
-  const float band1 = static_cast<float>(y1 - hp.legs_remove_ratio * box.height);
+  const cv::Rect2d face = face_from_body(box, BodyProportions{});
+  const float band0 = static_cast<float>(
+      std::max(box.y + kFaceBandRatio * box.height, neck_end_y(kNeckInFaces, face.y, face.height)));
+  const float band1 = static_cast<float>(y1 - kLegsBandRatio * box.height);
   double nearest = std::numeric_limits<double>::infinity();
   cv::Point2f chosen;
   for (const auto& p : hands) {
@@ -95,14 +84,12 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
       chosen = p;
     }
   }
-  if (nearest < hp.front_gate_ratio * box.width) {
+  if (nearest < kFrontGateRatio * box.width) {
     e.vector = chosen - e.body_centre;
+    e.kind = hand_obs_t::KIND_FRONT;
     if (e.vector.y != 0.0f) {
-      e.kind = hand_obs_t::KIND_FRONT;
       e.mode = e.vector.y < 0 ? gesture_cmd_t::MODE_CLOSER : gesture_cmd_t::MODE_FURTHER;
       e.direction = {0.0f, 0.0f, e.vector.y < 0 ? 1.0f : -1.0f};
-    } else {
-      e.kind = hand_obs_t::KIND_FRONT;
     }
   }
   return e;

@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "body_proportions.hpp"
 #include "paths.hpp"
 
 namespace gpilot {
@@ -233,8 +234,8 @@ struct SyntheticWorld::View {
   double px(double metres, const cv::Point3d& at) const { return f * metres / std::max(depth(at), 0.05); }
 };
 
-SyntheticWorld::SyntheticWorld(const SyntheticParams& params, Scenario scenario, uint64_t seed, TruthRules rules)
-    : params_(params), scenario_(std::move(scenario)), seed_(seed), rules_(std::move(rules)) {
+SyntheticWorld::SyntheticWorld(const SyntheticParams& params, Scenario scenario, uint64_t seed)
+    : params_(params), scenario_(std::move(scenario)), seed_(seed) {
   dims_ = FigureDims{}.scaled(params_.face_box_m);
   focal_ = 0.5 * params_.width / std::tan(0.5 * params_.hfov_deg * kDeg);
 
@@ -655,7 +656,7 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   double fx0 = 1e9, fy0 = 1e9, fx1 = -1e9, fy1 = -1e9;
   for (const auto& p : face) fx0 = std::min(fx0, p.x), fy0 = std::min(fy0, p.y), fx1 = std::max(fx1, p.x), fy1 = std::max(fy1, p.y);
   t.face_box = cv::Rect2f(float(fx0), float(fy0), float(fx1 - fx0), float(fy1 - fy0));
-  t.user_box = user_box_from_face(t.face_box, rules_.tracker);
+  t.user_box = cv::Rect2f(body_from_face(cv::Rect2d(t.face_box), BodyProportions{}));
   const cv::Point2d rh = v.project(pose.right.hand), lh = v.project(pose.left.hand);
   t.right_hand = cv::Point2f(float(rh.x), float(rh.y));
   t.left_hand = cv::Point2f(float(lh.x), float(lh.y));
@@ -666,7 +667,7 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   t.right_elbow = pt(pose.right.elbow), t.left_elbow = pt(pose.left.elbow);
   t.right_wrist = pt(pose.right.wrist), t.left_wrist = pt(pose.left.wrist);
   t.hand_size = static_cast<float>(1.1 * std::max(v.px(dims_.hand_length, pose.right.hand), v.px(dims_.hand_length, pose.left.hand)));
-  const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), rules_, t.hand_size);
+  const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), t.hand_size);
   t.shoulder_centre = e.shoulder_centre;
   t.body_centre = e.body_centre;
   t.expected_kind = e.kind;

@@ -4,7 +4,7 @@
 //
 // API (library target gpilot_capture_core; headers in services/capture/):
 //   Scenario sc = Scenario::load("tour");        // deploy/scenarios/tour.yaml, or any path to a .yaml
-//   SyntheticWorld world(config.section<CaptureParams>("capture").synthetic, sc, /*seed=*/1);  // + TruthRules
+//   SyntheticWorld world(config.section<CaptureParams>("capture").synthetic, sc, /*seed=*/1);
 //   SyntheticFrame f = world.render(t_s, frame_index, std::nullopt);        // the scenario's fixed camera
 //   SyntheticFrame g = world.render(t_s, frame_index, CameraPose{n, e, d, yaw});  // closed loop: the vehicle
 //   f.bgr: CV_8UC3 frame (params.width x params.height); f.truth: ground truth in image pixels.
@@ -18,12 +18,12 @@
 // Ground truth (SyntheticTruth, all image pixels, the semantics of lcmtypes/ground_truth_t.lcm):
 // - face_box: where the Haar cascade finds the pasted face (measured once on the portrait: its box there is
 //   97 x 97 px at (177, 66) of astronaut.png), projected; bounding box of the projected corners.
-// - user_box: the TRACKER's body box computed from face_box with TrackerParams (body_width_in_faces,
-//   body_height_in_faces, body_top_in_faces) — by definition the box a perfect tracker reports. The person's
+// - user_box: the body box of face_box with the preset head-body ratios (body_from_face, BodyProportions: the
+//   paper's preset; the tracker's defaults) — by definition the box a perfect tracker reports. The person's
 //   proportions (person_figure.hpp) put torso, resting arms and hands inside it and a stretched-out hand well
 //   outside it.
-// - shoulder_centre, body_centre: the paper's p_uc and p_bc from user_box with HandsParams
-//   (shoulder_centre_ratio, body_centre_ratio), i.e. the points the hands stage measures vectors from.
+// - shoulder_centre, body_centre: the paper's p_uc and p_bc from user_box with the truth's own ratios
+//   (gesture_truth.hpp, truth_rules; the hands stage's defaults), the points a vector is measured from.
 // - left_hand, right_hand: projected centres of the person's own left/right hand; hand_size: side of a square
 //   centred there that holds the whole hand.
 // - gesture: the scenario's intended gesture (ground_truth_t::GESTURE_*); during a transition it switches to
@@ -89,7 +89,7 @@ class SyntheticWorld {
  public:
   // Loads the background, the face portrait and the skin colours (paths relative to the project root);
   // throws std::runtime_error naming a file that cannot be read.
-  SyntheticWorld(const SyntheticParams& params, Scenario scenario, uint64_t seed, TruthRules rules = TruthRules{});
+  SyntheticWorld(const SyntheticParams& params, Scenario scenario, uint64_t seed);
 
   // Frame at scenario time t_s; camera = the vehicle's pose (closed loop) or nullopt for the scenario's
   // fixed pose. frame_index picks the sensor noise; labels (optional) receives a CV_8UC1 PartLabel image.
@@ -112,7 +112,6 @@ class SyntheticWorld {
   SyntheticParams params_;
   Scenario scenario_;
   uint64_t seed_;
-  TruthRules rules_;
   FigureDims dims_;
   double focal_ = 0.0;
   cv::Mat panorama_;          // background photo, mirrored side by side so that it wraps

@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "hands/hand_square.hpp"
+#include "hand_square.hpp"
 
 namespace gpilot {
 
@@ -39,14 +39,14 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   // a kernel of gigabytes (hands stalled 5.4 s, +545 MB).
   const double image_side = std::max(image.width, image.height);
   g.open_radius = static_cast<int>(std::lround(std::min(p.skin.open_radius_ratio * w, image_side)));
-  g.hand_side = hand_square_side(p, w, image);
+  g.hand_side = hand_square_side(p.hand_square_ratio, w, image);
   const auto row = [](double v) { return static_cast<int>(std::lround(std::clamp(v, -1e7, 1e7))); };
   g.face_rows_end = row(y + p.face_remove_ratio * h);
   // The box's ratio puts the chin's row where the box's top puts it: a box 8 px (0.15 face) higher than the
   // preset's, as a re-anchor with the track's fitted ratios made it, left the whole neck in the front band, and a
   // resting user's neck was a hand in front (CLOSER for 1 s). A known face says where the neck ends.
   if (face && p.neck_in_faces > 0 && std::isfinite(face->y) && std::isfinite(face->height) && face->height > 0)
-    g.face_rows_end = std::max(g.face_rows_end, row(neck_end_y(p, face->y, face->height)));
+    g.face_rows_end = std::max(g.face_rows_end, row(neck_end_y(p.neck_in_faces, face->y, face->height)));
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.image = image;
   g.body_centre_in_view = square_in_view(g.body_centre, g.hand_side, image);

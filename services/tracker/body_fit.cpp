@@ -62,6 +62,14 @@ class Histograms {
   cv::Mat bins_;
 };
 
+// The torso under a face: torso_half_width_in_faces either side of the face's centre, from torso_gap_in_faces
+// below the chin, torso_height_in_faces tall (not clipped).
+cv::Rect2d torso_below(const cv::Rect2d& face, const BodyFitParams& p) {
+  const double fw = face.width, fh = face.height, cx = face.x + fw / 2;
+  return cv::Rect2d(cx - p.torso_half_width_in_faces * fw, face.y + fh + p.torso_gap_in_faces * fh,
+                    2 * p.torso_half_width_in_faces * fw, p.torso_height_in_faces * fh);
+}
+
 }  // namespace
 
 BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProportions& preset, const BodyFitParams& p) {
@@ -81,8 +89,7 @@ BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProport
   }
   const double fw = face.width, fh = face.height;
   const double cx = face.x + fw / 2, chin = face.y + fh, bx = b.x + b.width / 2;
-  const cv::Rect2d torso(cx - p.torso_half_width_in_faces * fw, chin + p.torso_gap_in_faces * fh,
-                         2 * p.torso_half_width_in_faces * fw, p.torso_height_in_faces * fh);
+  const cv::Rect2d torso = torso_below(face, p);
   if (area(torso & frame_rect) < p.min_torso_in_frame * area(torso)) {
     f.refused = FaceRefusal::kNoTorso;
     return f;
@@ -216,10 +223,8 @@ std::vector<float> torso_colours(const cv::Mat& frame, const cv::Rect2d& face, c
                                  double dark_level) {
   std::vector<float> h;
   if (frame.empty() || frame.type() != CV_8UC3 || !(face.width > 0 && face.height > 0) || bins < 1) return h;
-  const double fw = face.width, fh = face.height, cx = face.x + fw / 2;
-  const cv::Rect torso = cv::Rect(cv::Rect2d(cx - p.torso_half_width_in_faces * fw, face.y + fh + p.torso_gap_in_faces * fh,
-                                             2 * p.torso_half_width_in_faces * fw, p.torso_height_in_faces * fh)) &
-                         cv::Rect(0, 0, frame.cols, frame.rows);
+  const double fw = face.width;
+  const cv::Rect torso = cv::Rect(torso_below(face, p)) & cv::Rect(0, 0, frame.cols, frame.rows);
   if (torso.width < 1 || torso.height < 1) return h;
   const int step = std::max(1, static_cast<int>(fw / p.fit_face_px));
   const double min_sum = 3.0 * dark_level;

@@ -12,8 +12,6 @@
 
 namespace gpilot {
 
-cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& p) { return body_from_face(face, p.body()); }
-
 // Where the box puts the face, a face-and-a-half around it.
 cv::Rect face_recheck_window(const cv::Rect2d& b, const BodyProportions& r) {
   const cv::Rect2d f = face_from_body(b, r);
@@ -94,7 +92,7 @@ std::vector<FaceDetection> FaceDetector::sorted_of(std::vector<cv::Rect> faces, 
   for (const cv::Rect& f : faces) {
     FaceDetection d;
     d.face = cv::Rect2d((f.x + offset.x) * k, (f.y + offset.y) * k, f.width * k, f.height * k);
-    d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+    d.body = body_from_face(d.face, p_.body()) & cv::Rect2d(0, 0, frame.cols, frame.rows);
     out.push_back(d);
   }
   return out;
@@ -295,7 +293,7 @@ std::vector<FaceDetection> FaceDetector::in_frame(std::vector<FaceDetection> all
                                                   const cv::Mat& frame) const {
   for (FaceDetection& d : all) {
     d.face += cv::Point2d(r.tl());
-    d.body = body_from_face(d.face, p_) & cv::Rect2d(0, 0, frame.cols, frame.rows);
+    d.body = body_from_face(d.face, p_.body()) & cv::Rect2d(0, 0, frame.cols, frame.rows);
   }
   return all;
 }

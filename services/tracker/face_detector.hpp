@@ -17,10 +17,6 @@ struct FaceDetection {
   cv::Rect2d body;  //!< body box from the head-body ratio, clipped to the frame
 };
 
-// The body box of a face box (not clipped): centred on the face horizontally, its top a little above the
-// face top, its size the head-body ratios of params.
-cv::Rect2d body_from_face(const cv::Rect2d& face, const TrackerParams& params);
-
 // Where the face re-check looks for the face of a body box: 3 face widths wide centred where the ratios put
 // the face, from 0.75 face heights above the face top they put there, 2.5 face heights tall (not clipped).
 cv::Rect face_recheck_window(const cv::Rect2d& body, const BodyProportions& ratios);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "hands/hand_square.hpp"
+#include "hand_square.hpp"
 
 namespace gpilot {
 
@@ -94,7 +94,7 @@ PersonScore score_person(const PersonKeypointTruth& t, const HandsOutput& r, con
   }
   if (skin && params && !bgr.empty() && s.expected != HandKind::None && r.user_box.width > 0) {
     // The stage's own measures for this box: its hand square and the skin count Alg. 1 / 2 ask for there.
-    const int side = hand_square_side(*params, r.user_box.width, bgr.size());
+    const int side = hand_square_side(params->hand_square_ratio, r.user_box.width, bgr.size());
     const int paper = s.expected == HandKind::Out ? params->out_min_skin : params->front_min_skin;
     const int need = min_hand_skin(paper, params->min_skin_square_share, side);
     for (const ArmKeypointTruth* arm : {&t.left, &t.right}) {

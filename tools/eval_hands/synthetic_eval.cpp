@@ -29,10 +29,8 @@ const char* kKinds[3] = {"NONE", "OUT", "FRONT"};
 
 int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
   const auto hands = config.section<HandsParams>("hands");
-  TruthRules rules;
-  rules.tracker = config.section<TrackerParams>("tracker");
-  rules.hands = hands;
-  const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(o.scenario), o.seed, rules);
+  const auto tracker = config.section<TrackerParams>("tracker");
+  const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(o.scenario), o.seed);
   const auto method = make_hand_method(hands);
 
   const double fps = world.params().fps;
@@ -53,8 +51,8 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
     const SyntheticFrame f = world.render(static_cast<double>(i) / fps, i, std::nullopt);
     const int64_t t0 = monotonic_utime();
     // The face as the tracker hands it over: on the first frame and at each re-check (tracker.face_recheck_frames).
-    const int recheck = std::max(1, rules.tracker.face_recheck_frames);
-    const bool face_frame = i == 0 || (rules.tracker.face_recheck_frames > 0 && i % recheck < o.stride);
+    const int recheck = std::max(1, tracker.face_recheck_frames);
+    const bool face_frame = i == 0 || (tracker.face_recheck_frames > 0 && i % recheck < o.stride);
     const HandsOutput r =
         method->observe(f.bgr, UserView{f.truth.user_box, face_frame ? std::optional<cv::Rect2f>(f.truth.face_box) : std::nullopt, 1},
                         std::llround(1e6 * static_cast<double>(i) / fps));

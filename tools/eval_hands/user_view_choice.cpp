@@ -40,7 +40,7 @@ ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotat
     const auto f = faces_.detect(bgr, c.search_window);
     if (f) c.face = to_float(f->face);
     else c.note = "no face in the re-check window";
-    c.view = UserView{f ? to_float(body_from_face(f->face, tracker_)) : annotation_box, c.face, track_id};
+    c.view = UserView{f ? to_float(body_from_face(f->face, tracker_.body())) : annotation_box, c.face, track_id};
     return c;
   }
   if (!truth.face_box) {
@@ -50,7 +50,7 @@ ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotat
   if (mode_ == BoxMode::Keypoints) {
     c.face = *truth.face_box;
     c.search_window = to_pixels(*truth.face_box, bgr.size());
-    c.view = UserView{to_float(body_from_face(cv::Rect2d(*truth.face_box), tracker_)), c.face, track_id};
+    c.view = UserView{to_float(body_from_face(cv::Rect2d(*truth.face_box), tracker_.body())), c.face, track_id};
     return c;
   }
   c.search_window = to_pixels(grown(*truth.face_box, 2.0f), bgr.size());
@@ -66,7 +66,7 @@ ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotat
     return c;
   }
   c.face = face;
-  c.view = UserView{to_float(body_from_face(f->face, tracker_)), face, track_id};
+  c.view = UserView{to_float(body_from_face(f->face, tracker_.body())), face, track_id};
   return c;
 }
 

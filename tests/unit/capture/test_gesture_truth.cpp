@@ -14,15 +14,7 @@ const cv::Size kImage(640, 480);
 const cv::Point2f kRestRight(120, 200), kRestLeft(180, 200);  // inside the box, below the front band
 
 ExpectedCommand run(cv::Point2f right, cv::Point2f left = kRestLeft) {
-  return expected_command(kBox, {right, left}, kImage, TruthRules{});
-}
-
-TEST(GestureTruth, UserBoxFromFaceUsesTheTrackerRatios) {
-  const cv::Rect2f b = user_box_from_face({300, 200, 32, 32}, TrackerParams{});
-  EXPECT_FLOAT_EQ(b.width, 88.0f);    // 2.75 face widths
-  EXPECT_FLOAT_EQ(b.height, 224.0f);  // 7 face heights
-  EXPECT_FLOAT_EQ(b.x, 316.0f - 44.0f);
-  EXPECT_FLOAT_EQ(b.y, 192.0f);       // 0.25 face heights above the face
+  return expected_command(kBox, {right, left}, kImage);
 }
 
 TEST(GestureTruth, RestingHandsGiveNoGesture) {
@@ -87,14 +79,10 @@ TEST(GestureTruth, FrontHandOutsideTheGateOrTheBandIsNothing) {
 TEST(GestureTruth, AHandUnderTheChinIsNeckAsTheStageSeesItWithTheFaceKnown) {
   // The box's face (7 face heights tall, its top 0.25 face heights below the box's): 28.6 px high from y = 57.1,
   // the neck down to 0.35 face heights below it, y = 95.7: past the 0.2 band (90). A hand at y = 93 is neck to
-  // the stage that knows the user's face (hands.neck_in_faces) and CLOSER by the box's ratio alone.
+  // the truth (truth_rules::kNeckInFaces), as to the stage that knows the user's face.
   EXPECT_EQ(run({150, 93}).kind, hand_obs_t::KIND_NONE);
   EXPECT_EQ(run({150, 97}).mode, gesture_cmd_t::MODE_CLOSER);
-  TruthRules ratio_only;
-  ratio_only.hands.neck_in_faces = 0;
-  const ExpectedCommand e = expected_command(kBox, {cv::Point2f(150, 93), kRestLeft}, kImage, ratio_only);
-  EXPECT_EQ(e.mode, gesture_cmd_t::MODE_CLOSER);
-  EXPECT_EQ(e.vector, cv::Point2f(0, -57));
+  EXPECT_EQ(run({150, 97}).vector, cv::Point2f(0, -53));
 }
 
 TEST(GestureTruth, WithTheBodyCentreOutOfViewAHandInFrontOrCutByTheBorderIsNotSeen) {
@@ -102,23 +90,18 @@ TEST(GestureTruth, WithTheBodyCentreOutOfViewAHandInFrontOrCutByTheBorderIsNotSe
   // (the drone high and close, the hips below the frame), p_uc = (150, 420)
   const cv::Rect2f low(100, 380, 100, 200);
   const cv::Point2f in_front(150, 430), cut_out(40, 475), rest(180, 560);
-  TruthRules rules;
   // THEN a hand in front is not seen (the stage judges none), nor a hand below the shoulders the bottom cuts
-  EXPECT_EQ(expected_command(low, {in_front, rest}, kImage, rules).mode, gesture_cmd_t::MODE_HOVER);
-  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules).kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(expected_command(low, {in_front, rest}, kImage).mode, gesture_cmd_t::MODE_HOVER);
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage).kind, hand_obs_t::KIND_NONE);
   // AND a raised hand above the shoulders still is
-  EXPECT_EQ(expected_command(low, {cv::Point2f(40, 400), rest}, kImage, rules).kind, hand_obs_t::KIND_OUT);
+  EXPECT_EQ(expected_command(low, {cv::Point2f(40, 400), rest}, kImage).kind, hand_obs_t::KIND_OUT);
   // AND a hand is more than its centre: its square (25 px) is cut 8 px at the bottom at the centre (475 - 12 + 25
   // = 488); a 10 px hand's top still has it cut (483), a 20 px hand's (478) does not: that hand is seen
-  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules, 10.0f).kind, hand_obs_t::KIND_NONE);
-  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules, 20.0f).kind, hand_obs_t::KIND_OUT);
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, 10.0f).kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, 20.0f).kind, hand_obs_t::KIND_OUT);
   // AND so at the side: a hand at x = 8 has its square cut on the left (8 - 12 < 0) unless it reaches 4 px in
-  EXPECT_EQ(expected_command(low, {cv::Point2f(8, 440), rest}, kImage, rules, 6.0f).kind, hand_obs_t::KIND_NONE);
-  EXPECT_EQ(expected_command(low, {cv::Point2f(8, 440), rest}, kImage, rules, 8.0f).kind, hand_obs_t::KIND_OUT);
-  // WHEN the rule is off (hands.needs_body_centre false) THEN the paper's rules see both
-  rules.hands.needs_body_centre = false;
-  EXPECT_EQ(expected_command(low, {in_front, rest}, kImage, rules).mode, gesture_cmd_t::MODE_CLOSER);
-  EXPECT_EQ(expected_command(low, {cut_out, rest}, kImage, rules).kind, hand_obs_t::KIND_OUT);
+  EXPECT_EQ(expected_command(low, {cv::Point2f(8, 440), rest}, kImage, 6.0f).kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(expected_command(low, {cv::Point2f(8, 440), rest}, kImage, 8.0f).kind, hand_obs_t::KIND_OUT);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "gpilot/gesture_cmd_t.hpp"
 #include "gpilot/ground_truth_t.hpp"
 #include "gpilot/hand_obs_t.hpp"
+#include "hands/hands_params.hpp"
 #include "hands/skin_model.hpp"
 #include "paths.hpp"
 #include "synthetic_world.hpp"

@@ -309,10 +309,7 @@ TEST(EvalHandsCli, GivenAClipWithAGestureTruthWhenRunThenEachGestureIsJudgedFrom
   Scratch dir;
   fs::create_directories(dir / "img");
   const gpilot::Config config;
-  gpilot::TruthRules rules;
-  rules.tracker = config.section<gpilot::TrackerParams>("tracker");
-  rules.hands = config.section<gpilot::HandsParams>("hands");
-  const gpilot::SyntheticWorld world(config.section<gpilot::SyntheticParams>("synthetic"), gpilot::Scenario::load("tour"), 1, rules);
+  const gpilot::SyntheticWorld world(config.section<gpilot::SyntheticParams>("synthetic"), gpilot::Scenario::load("tour"), 1);
   std::ofstream truth(dir / "truth.csv");
   truth << "# first,last,GESTURE\n";
   int first = 0, gesture = -1;

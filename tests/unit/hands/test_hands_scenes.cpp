@@ -13,6 +13,7 @@
 #include "capture/synthetic_world.hpp"
 #include "config.hpp"
 #include "hands/hands_core_factory.hpp"
+#include "tracker/tracker_params.hpp"
 
 using namespace gpilot;
 
@@ -20,14 +21,11 @@ namespace {
 
 double kind_accuracy(const std::string& scenario, const HandsParams& hands) {
   const Config config;
-  TruthRules rules;
-  rules.tracker = config.section<TrackerParams>("tracker");
-  rules.hands = hands;
-  const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), 1, rules);
+  const SyntheticWorld world(config.section<SyntheticParams>("synthetic"), Scenario::load(scenario), 1);
   const auto method = make_hand_method(hands);
   const double fps = world.params().fps;
   const int frames = static_cast<int>(world.scenario().duration_s() * fps);
-  const int stride = 5, recheck = rules.tracker.face_recheck_frames;
+  const int stride = 5, recheck = config.section<TrackerParams>("tracker").face_recheck_frames;
   int right = 0, scored = 0;
   for (int i = 0; i < frames; i += stride) {
     const SyntheticFrame f = world.render(i / fps, i, std::nullopt);
@@ -76,4 +74,14 @@ TEST(HandsScenesOrangeShirt, TheShirtIsNoHandAndTheHandsInFrontOfItAreFound) {
   HandsParams no_clothing;
   no_clothing.skin.adapt.clothing_weight = 0;
   EXPECT_LE(kind_accuracy("orange-shirt", no_clothing), 0.85);
+}
+
+TEST(HandsScenesTruth, AMisSetStageScoresLowerAgainstTheScenesTruth) {
+  // The truth is the scene's (gesture_truth.hpp, truth_rules), not the stage's config: a search rectangle
+  // narrowed to 0.1 box widths each side (default 1.2) misses the stretched-out hands, and the score says so.
+  HandsParams narrow;
+  narrow.roi_extend_side = 0.1;
+  const double right = kind_accuracy("tour", HandsParams{}), mis_set = kind_accuracy("tour", narrow);
+  EXPECT_GE(right, 0.95);
+  EXPECT_LT(mis_set, right - 0.10) << mis_set << " vs " << right;
 }

@@ -23,7 +23,7 @@ bool contains(const cv::Rect2d& box, cv::Point2d p) { return box.contains(p); }
 
 TEST(BodyFromFace, UsesTheHeadBodyRatios) {
   TrackerParams p;
-  const cv::Rect2d b = body_from_face(cv::Rect2d(100, 50, 40, 40), p);
+  const cv::Rect2d b = body_from_face(cv::Rect2d(100, 50, 40, 40), p.body());
   EXPECT_DOUBLE_EQ(b.width, 110.0);   // 2.75 face widths
   EXPECT_DOUBLE_EQ(b.height, 280.0);  // 7 face heights
   EXPECT_DOUBLE_EQ(b.x, 120.0 - 55.0);
