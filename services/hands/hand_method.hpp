@@ -45,6 +45,7 @@ struct SkinDiagnostics {
 struct PoseDiagnostics {
   PoseLandmarks landmarks{};  //!< BlazePose's 33 landmarks, image pixels
   double score = 0;           //!< the landmark model's pose flag, 0..1
+  std::string reading;        //!< how the arms were read: "<rule>; left <ARM>, right <ARM>" ("" without a pose)
 };
 
 // One frame's observation, whatever the method: every position is on user_box (the tracker's box as given).

@@ -97,9 +97,9 @@ struct SkinParams {
 };
 
 struct HandsParams {
-  //! the hands method (hands_core_factory.hpp): pose, the user's body landmarks (BlazePose) read by pose_gesture;
-  //! skin, the paper's Alg. 1/2 on a skin table
-  std::string method = "pose";
+  //! the hands method (hands_core_factory.hpp): skin, the paper's Alg. 1/2 on a skin table; pose, the user's body
+  //! landmarks (BlazePose) read by pose_gesture
+  std::string method = "skin";
   PoseParams pose;                  //!< the pose method's models, detector, tracking and smoothing
   PoseGestureParams pose_gesture;   //!< the pose method's rules: which arm commands, and how
   SkinParams skin;
@@ -159,7 +159,7 @@ struct HandsParams {
 
   template <class V>
   void visit(V& v) {
-    v("method", method, "hands method: pose (body landmarks) or skin (the paper's Alg. 1/2 on a skin table)");
+    v("method", method, "hands method: skin (the paper's Alg. 1/2 on a skin table) or pose (body landmarks)");
     v.group("pose", pose);
     v.group("pose_gesture", pose_gesture);
     v.group("skin", skin);

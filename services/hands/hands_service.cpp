@@ -120,7 +120,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node) {
   return start_hands_service(config, node, make_hand_method(config.section<HandsParams>("hands")));
 }
 
-std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, std::unique_ptr<HandMethod> method) {
+std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, std::unique_ptr<HandMethod> chosen) {
   struct State {
     State(const HandsParams& p, std::unique_ptr<HandMethod> m) : method(std::move(m)), pairer(p.match_window) {}
     std::unique_ptr<HandMethod> method;
@@ -134,7 +134,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, s
     SeqGaps gaps;
   };
   const auto params = config.section<HandsParams>("hands");
-  auto state = std::make_shared<State>(params, std::move(method));
+  auto state = std::make_shared<State>(params, std::move(chosen));
   auto& method = *state->method;
   auto& pairer = state->pairer;
   auto& frames_dropped = state->frames_dropped;

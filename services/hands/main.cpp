@@ -15,9 +15,9 @@ using namespace gpilot;
 int main(int argc, char** argv) {
   ServiceCli cli("gpilot-hands",
                  "Hands stage: CAMERA + USER_TRACK (paired by seq) -> HAND_OBS.\n"
-                 "hands.method pose (default): the user's body landmarks (BlazePose, seeded by the tracker's box); an arm\n"
-                 "stretched out (vector from the shoulder centre) or a hand in front of the body (vector from the body\n"
-                 "centre). hands.method skin: the paper's Alg. 1/2 on a skin table in a rectangle around the user box.\n"
+                 "hands.method skin (default): the paper's Alg. 1/2 on a skin table in a rectangle around the user box.\n"
+                 "hands.method pose: the user's body landmarks (BlazePose, seeded by the tracker's box); an arm stretched\n"
+                 "out (vector from the shoulder centre) or a hand in front of the body (vector from the body centre).\n"
                  "Parameters: section `hands` of the config.");
   std::unique_ptr<HandMethod> method;
   cli.before_bus([&](const Config& config) { method = make_hand_method(config.section<HandsParams>("hands")); });

@@ -71,14 +71,17 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   const bool in_span = W.x >= t.span_min_x && W.x <= t.span_max_x;
   const bool at_face = length(W - t.face) <= t.face_radius;
   const bool straight = a.straightness >= p.out_min_straightness;
-  if (straight && (a.from_down_deg >= p.out_min_from_down_deg || above_shoulders))
-    a.pose = ArmPose::Out;
-  else if (straight && below_centre && a.from_down_deg <= p.rest_max_from_down_deg)
-    a.pose = ArmPose::Rest;  // a straight arm hanging
-  else if (in_span && !above_shoulders && !below_hips && !at_face)
+  const bool hanging = straight && below_centre && a.from_down_deg < p.out_min_from_down_deg;
+  // Nearer the camera than its shoulder by front_min_depth shoulder widths: a hand held out in front of the
+  // body, which the image alone cannot tell from one hanging in front of the thighs.
+  const double shoulder_width = length(t.left_shoulder - t.right_shoulder);
+  const bool forward = lm[shoulder].z - lm[wrist].z >= p.front_min_depth * shoulder_width;
+  if (straight && (above_shoulders || (a.from_down_deg >= p.out_min_from_down_deg && !in_span)))
+    a.pose = ArmPose::Out;  // stretched out: up, sideways, or pointing down away from the body
+  else if (in_span && !above_shoulders && !below_hips && !at_face && (!hanging || forward))
     a.pose = a.hand.y > t.body_centre.y ? ArmPose::FrontLow : ArmPose::FrontHigh;  // as the vector will say
-  else if (below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
-    a.pose = ArmPose::Rest;  // the hand down by the hips, the arm hanging
+  else if (hanging || below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
+    a.pose = ArmPose::Rest;  // hanging, or the hand down by the hips
   else
     a.pose = ArmPose::Other;  // at the face, on the head, a bent arm raised
   return a;

@@ -43,6 +43,7 @@ HandsOutput PoseHandMethod::observe(const cv::Mat& bgr, const UserView& user, in
   diagnostics.landmarks = r.landmarks;
   out.pose = diagnostics;
   const PoseGesture g = read_pose_gesture(r.landmarks, params_.pose_gesture);
+  out.pose->reading = std::string(g.rule) + "; left " + arm_pose_name(g.left.pose) + ", right " + arm_pose_name(g.right.pose);
   if (!g.torso_seen) return out;
   out.shoulder_centre = g.shoulder_centre;
   out.body_centre = g.body_centre;

@@ -36,7 +36,7 @@ PersonCsv::PersonCsv(const std::string& path) : f_(std::fopen(path.c_str(), "w")
                "box_x,box_y,box_w,box_h,face_found,face_x,face_y,face_w,face_h,"
                "stage_box_x,stage_box_y,stage_box_w,stage_box_h,stage_kind,hand_x,hand_y,p_uc_x,p_uc_y,p_bc_x,p_bc_y,vector_from,vector_x,vector_y,"
                "truth_arm,truth_vector_x,truth_vector_y,angle_error_deg,front_high_low_right,false_hand,"
-               "hand_skin,skin_outside,skin_inside,truth_hand_skin,truth_hand_shows_skin\n");
+               "hand_skin,skin_outside,skin_inside,truth_hand_skin,truth_hand_shows_skin,pose_score,pose_reading\n");
 }
 
 PersonCsv::~PersonCsv() {
@@ -74,6 +74,8 @@ void PersonCsv::write(const PersonCsvRow& r) {
   const bool measured = r.score && r.score->hand_skin;
   line += "," + (measured ? std::to_string(*r.score->hand_skin) : std::string()) + "," +
           (measured ? (r.score->hand_shows_skin ? "1" : "0") : "");
+  if (r.result && r.result->pose) line += "," + num(r.result->pose->score) + "," + field(r.result->pose->reading);
+  else line += ",,";
   std::fprintf(f_, "%s\n", line.c_str());
 }
 

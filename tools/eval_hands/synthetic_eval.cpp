@@ -45,7 +45,7 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
   if (!o.png_dir.empty()) std::filesystem::create_directories(o.png_dir);
   std::FILE* csv = o.csv_path.empty() ? nullptr : std::fopen(o.csv_path.c_str(), "w");
   if (!o.csv_path.empty() && !csv) throw std::runtime_error("cannot write " + o.csv_path);
-  if (csv) std::fprintf(csv, "frame,t_s,truth_kind,kind,truth_x,truth_y,x,y,hand_skin,skin_outside,skin_inside\n");
+  if (csv) std::fprintf(csv, "frame,t_s,truth_kind,kind,truth_x,truth_y,x,y,hand_skin,skin_outside,skin_inside,pose_reading\n");
 
   for (int64_t i = 0; i < frames; i += o.stride) {
     const SyntheticFrame f = world.render(static_cast<double>(i) / fps, i, std::nullopt);
@@ -66,8 +66,9 @@ int run_synthetic_eval(const SyntheticEvalOptions& o, const Config& config) {
     if (csv) {
       const HandResult none;
       const HandResult& d = r.skin ? r.skin->detection : none;
-      std::fprintf(csv, "%lld,%.3f,%s,%s,%.1f,%.1f,%.1f,%.1f,%d,%d,%d\n", static_cast<long long>(i), static_cast<double>(i) / fps,
-                   kKinds[truth], kKinds[got], tv.x, tv.y, r.vector.x, r.vector.y, d.hand_skin, d.skin_outside, d.skin_inside);
+      std::fprintf(csv, "%lld,%.3f,%s,%s,%.1f,%.1f,%.1f,%.1f,%d,%d,%d,\"%s\"\n", static_cast<long long>(i), static_cast<double>(i) / fps,
+                   kKinds[truth], kKinds[got], tv.x, tv.y, r.vector.x, r.vector.y, d.hand_skin, d.skin_outside, d.skin_inside,
+                   r.pose ? r.pose->reading.c_str() : "");
     }
     if (truth == 1 && got == 1) {
       angle_err.push_back(angle_between_deg(r.vector, tv));

@@ -164,7 +164,7 @@ const std::map<std::string, StageEntry>& stages() {
   static const std::map<std::string, StageEntry> table = {
       {"tracker", {start_tracker_service, declared(tc::kUses, R::In), declared(tc::kUses, R::Out),
                    {{tc::kCamera.name, tc::kUserTrack.name}}}},
-      {"hands", {start_hands_service, declared(hc::kUses, R::In), declared(hc::kUses, R::Out),
+      {"hands", {static_cast<std::shared_ptr<void> (*)(const Config&, BusNode&)>(start_hands_service), declared(hc::kUses, R::In), declared(hc::kUses, R::Out),
                  {{hc::kCamera.name, hc::kHandObs.name}}, nullptr, {hc::kCamera.name, hc::kUserTrack.name}}},
       {"decide", {start_decide_service, declared(dc::kUses, R::In), declared(dc::kUses, R::Out)}},
       // The vehicle and the autopilot are the log's: VEHICLE_STATE and AUTOPILOT are inputs here, not outputs.
