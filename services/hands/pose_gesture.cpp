@@ -28,6 +28,7 @@ struct Torso {
   double span_min_x = 0, span_max_x = 0;
   cv::Point2f face;
   double face_radius = 0;  //!< pixels
+  bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
 };
 
 Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
@@ -78,7 +79,7 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   const bool forward = lm[shoulder].z - lm[wrist].z >= p.front_min_depth * shoulder_width;
   if (straight && (above_shoulders || (a.from_down_deg >= p.out_min_from_down_deg && !in_span)))
     a.pose = ArmPose::Out;  // stretched out: up, sideways, or pointing down away from the body
-  else if (in_span && !above_shoulders && !below_hips && !at_face && (!hanging || forward))
+  else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && (!hanging || forward))
     a.pose = a.hand.y > t.body_centre.y ? ArmPose::FrontLow : ArmPose::FrontHigh;  // as the vector will say
   else if (hanging || below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
     a.pose = ArmPose::Rest;  // hanging, or the hand down by the hips
@@ -107,13 +108,16 @@ PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& 
   PoseGesture g;
   for (const float v : {lm[L::kLeftShoulder].x, lm[L::kRightShoulder].x, lm[L::kLeftHip].x, lm[L::kRightHip].x})
     if (!std::isfinite(v)) return g;
-  const Torso t = torso_of(lm, p);
+  Torso t = torso_of(lm, p);
+  t.hips_seen = seen(lm, L::kLeftHip, p.min_visibility) && seen(lm, L::kRightHip, p.min_visibility);
   g.shoulder_centre = t.shoulder_mid;
   g.body_centre = t.body_centre;
-  g.torso_seen = seen(lm, L::kLeftShoulder, p.min_visibility) && seen(lm, L::kRightShoulder, p.min_visibility) &&
-                 seen(lm, L::kLeftHip, p.min_visibility) && seen(lm, L::kRightHip, p.min_visibility);
+  // The shoulders are what every arm is read from. The hips may be below the frame (the drone high and close):
+  // BlazePose still places them, which is enough for an arm out or at rest, but a hand in front is judged
+  // against p_bc and the hip line only when the hips are seen.
+  g.torso_seen = seen(lm, L::kLeftShoulder, p.min_visibility) && seen(lm, L::kRightShoulder, p.min_visibility);
   if (!g.torso_seen) {
-    g.rule = "torso not seen";
+    g.rule = "shoulders not seen";
     return g;
   }
   g.left = read_arm(lm, t, p, L::kLeftShoulder, L::kLeftElbow, L::kLeftWrist, L::kLeftPinky, L::kLeftIndex);

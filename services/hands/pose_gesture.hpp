@@ -28,7 +28,8 @@ struct PoseGesture {
   cv::Point2f hand;               //!< the commanding hand's point, pixels (NONE: none)
   cv::Point2f shoulder_centre;    //!< p_uc: the shoulders' midpoint
   cv::Point2f body_centre;        //!< p_bc: midway between the shoulders' and the hips' midpoints
-  bool torso_seen = false;        //!< shoulders and hips visible: without them there is no observation
+  bool torso_seen = false;        //!< the shoulders visible: without them there is no observation (without the hips
+                                  //!< no hand in front)
   ArmReading left, right;         //!< the person's own left and right arm
   const char* rule = "";          //!< which rule decided the person's observation
 };

@@ -119,16 +119,30 @@ TEST(PoseGesture, AHandAtTheFaceIsNotTheFrontGestureAndDoesNotStopTheOtherArm) {
   EXPECT_EQ(front.kind, HandKind::Front);
 }
 
-TEST(PoseGesture, AnArmOutOfSightLeavesTheOtherToCommandButATorsoOutOfSightGivesNothing) {
+TEST(PoseGesture, AnArmOutOfSightLeavesTheOtherToCommandButShouldersOutOfSightGiveNothing) {
   PoseLandmarks lm = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
   lm[L::kLeftWrist].visibility = 0.2f;
   const PoseGesture g = read_pose_gesture(lm, PoseGestureParams{});
   EXPECT_EQ(g.left.pose, ArmPose::Unseen);
   EXPECT_EQ(g.kind, HandKind::Out);
-  lm[L::kRightHip].visibility = 0.2f;
-  const PoseGesture no_torso = read_pose_gesture(lm, PoseGestureParams{});
-  EXPECT_FALSE(no_torso.torso_seen);
-  EXPECT_EQ(no_torso.kind, HandKind::None);
+  lm[L::kRightShoulder].visibility = 0.2f;
+  const PoseGesture no_shoulders = read_pose_gesture(lm, PoseGestureParams{});
+  EXPECT_FALSE(no_shoulders.torso_seen);
+  EXPECT_EQ(no_shoulders.kind, HandKind::None);
+}
+
+TEST(PoseGesture, HipsBelowTheFrameLeaveAnArmOutButNoHandInFront) {
+  // The drone high and close: the hips below the frame, placed by the model but not seen.
+  PoseLandmarks out = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
+  PoseLandmarks front = standing({{365, 150}, {368, 200}}, kRightFrontLow);
+  for (PoseLandmarks* lm : {&out, &front}) {
+    (*lm)[L::kLeftHip].visibility = 0.3f;
+    (*lm)[L::kRightHip].visibility = 0.3f;
+  }
+  EXPECT_EQ(read_pose_gesture(out, PoseGestureParams{}).kind, HandKind::Out);
+  const PoseGesture g = read_pose_gesture(front, PoseGestureParams{});
+  EXPECT_EQ(g.kind, HandKind::None);
+  EXPECT_NE(g.right.pose, ArmPose::FrontLow);
 }
 
 TEST(PoseGesture, ABentArmIsNotOutAndTheStraightnessLimitDecides) {
