@@ -26,6 +26,7 @@ struct Torso {
   cv::Point2f left_shoulder, right_shoulder, left_hip, right_hip;
   cv::Point2f shoulder_mid, body_centre;
   double span_min_x = 0, span_max_x = 0;
+  double shoulder_width = 0;  //!< pixels
   cv::Point2f face;
   double face_radius = 0;  //!< pixels
   bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
@@ -49,7 +50,9 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
   cv::Point2f sum;
   for (int i = L::kNose; i <= L::kRightEar; ++i) sum += at(lm, i);
   t.face = sum * (1.0f / static_cast<float>(L::kRightEar + 1));
-  t.face_radius = p.face_radius * length(t.left_shoulder - t.right_shoulder);
+  t.shoulder_width = length(t.left_shoulder - t.right_shoulder);
+  t.face_radius = p.face_radius * t.shoulder_width;
+  t.hips_seen = seen(lm, L::kLeftHip, p.min_visibility) && seen(lm, L::kRightHip, p.min_visibility);
   return t;
 }
 
@@ -75,8 +78,7 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   const bool hanging = straight && below_centre && a.from_down_deg < p.out_min_from_down_deg;
   // Nearer the camera than its shoulder by front_min_depth shoulder widths: a hand held out in front of the
   // body, which the image alone cannot tell from one hanging in front of the thighs.
-  const double shoulder_width = length(t.left_shoulder - t.right_shoulder);
-  const bool forward = lm[shoulder].z - lm[wrist].z >= p.front_min_depth * shoulder_width;
+  const bool forward = lm[shoulder].z - lm[wrist].z >= p.front_min_depth * t.shoulder_width;
   if (straight && (above_shoulders || (a.from_down_deg >= p.out_min_from_down_deg && !in_span)))
     a.pose = ArmPose::Out;  // stretched out: up, sideways, or pointing down away from the body
   else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && (!hanging || forward))
@@ -106,10 +108,12 @@ const char* arm_pose_name(ArmPose a) {
 
 PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p) {
   PoseGesture g;
-  for (const float v : {lm[L::kLeftShoulder].x, lm[L::kRightShoulder].x, lm[L::kLeftHip].x, lm[L::kRightHip].x})
-    if (!std::isfinite(v)) return g;
-  Torso t = torso_of(lm, p);
-  t.hips_seen = seen(lm, L::kLeftHip, p.min_visibility) && seen(lm, L::kRightHip, p.min_visibility);
+  for (const PoseLandmark& l : lm)
+    if (!(std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z) && std::isfinite(l.visibility))) {
+      g.rule = "a landmark is not finite";
+      return g;
+    }
+  const Torso t = torso_of(lm, p);
   g.shoulder_centre = t.shoulder_mid;
   g.body_centre = t.body_centre;
   // The shoulders are what every arm is read from. The hips may be below the frame (the drone high and close):

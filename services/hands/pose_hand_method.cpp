@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "hand_square.hpp"
 #include "hands/pose_gesture.hpp"
 
 namespace gpilot {
@@ -52,7 +53,7 @@ HandsOutput PoseHandMethod::observe(const cv::Mat& bgr, const UserView& user, in
   out.vector = g.vector;
   out.hand = g.hand;
   // The paper's hand square (w/4 of the user box) around the hand, for the picture; clipped to the frame.
-  const int side = std::max(1, static_cast<int>(std::lround(user.box.width * params_.hand_square_ratio)));
+  const int side = hand_square_side(params_.hand_square_ratio, user.box.width, bgr.size());
   out.hand_box = cv::Rect(static_cast<int>(std::lround(g.hand.x)) - side / 2, static_cast<int>(std::lround(g.hand.y)) - side / 2,
                           side, side) & cv::Rect(0, 0, bgr.cols, bgr.rows);
   return out;

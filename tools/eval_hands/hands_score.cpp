@@ -127,6 +127,7 @@ void HandsScoreboard::add_run(const PersonKeypointTruth& t, const HandsOutput& r
   front_found_ += s.front_found;
   front_hl_right_ += s.front_high_low_right.value_or(false);
   false_hand_ += s.false_hand;
+  skin_measured_ += s.hand_skin.has_value();
   if (s.hand_shows_skin && s.expected == HandKind::Out) ++out_skin_, out_skin_found_ += s.out_found;
   if (s.hand_shows_skin && s.expected == HandKind::Front) ++front_skin_, front_skin_found_ += s.front_found;
 }
@@ -187,6 +188,7 @@ nlohmann::json HandsScoreboard::to_json(const nlohmann::json& context) const {
                 {"high_low_right", front_hl_right_},
                 {"high_low_right_given_found", ratio(front_hl_right_, front_found_)}};
   j["hand_shows_skin"] = {{"what", "OUT/FRONT persons whose truth hand square holds more skin (the stage's classifier) than the stage needs"},
+                          {"measured", skin_measured_},
                           {"out", out_skin_},
                           {"out_found", out_skin_found_},
                           {"front", front_skin_},
@@ -247,6 +249,10 @@ void HandsScoreboard::print_table(std::FILE* out, const std::string& title) cons
                static_cast<long long>(front_hl_right_), static_cast<long long>(front_found_), 100 * ratio(front_hl_right_, front_found_));
   std::fprintf(out, "false hand on REST persons  %lld of %lld (%.1f %%)\n", static_cast<long long>(false_hand_), static_cast<long long>(rest_n),
                100 * ratio(false_hand_, rest_n));
+  if (skin_measured_ == 0) {
+    std::fprintf(out, "truth hand shows skin       not measured (the method judges no skin colour)\n");
+    return;
+  }
   std::fprintf(out, "truth hand shows skin       OUT %lld of %lld (found %lld of them), FRONT %lld of %lld (found %lld of them)\n"
                     "                            (the stage's skin, before the opening, in its hand square a third of the forearm\n"
                     "                            beyond the truth wrist, more than the stage needs: what skin colour can find)\n",

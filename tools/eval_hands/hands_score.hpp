@@ -81,6 +81,7 @@ class HandsScoreboard {
   std::array<int64_t, kArmTruths> arms_{};
   int64_t confusion_[3][3] = {};  //!< [expected][stage], order NONE, OUT, FRONT
   int64_t out_skin_ = 0, out_skin_found_ = 0, front_skin_ = 0, front_skin_found_ = 0;
+  int64_t skin_measured_ = 0;  //!< OUT/FRONT persons whose truth hand's skin was counted (a skin classifier ran)
   int64_t out_found_ = 0, front_found_ = 0, front_hl_right_ = 0, false_hand_ = 0, kind_right_ = 0;
   std::vector<double> out_angle_err_;
 };

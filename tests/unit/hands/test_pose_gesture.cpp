@@ -160,6 +160,13 @@ TEST(PoseGesture, NonFiniteLandmarksGiveNothing) {
   PoseLandmarks lm = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
   lm[L::kLeftShoulder].x = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(read_pose_gesture(lm, PoseGestureParams{}).kind, HandKind::None);
+  // Any landmark: the commanding arm's wrist depth alone.
+  PoseLandmarks wrist = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
+  ASSERT_EQ(read_pose_gesture(wrist, PoseGestureParams{}).kind, HandKind::Out);
+  wrist[L::kRightWrist].z = std::numeric_limits<float>::infinity();
+  const PoseGesture g = read_pose_gesture(wrist, PoseGestureParams{});
+  EXPECT_EQ(g.kind, HandKind::None);
+  EXPECT_STREQ(g.rule, "a landmark is not finite");
 }
 
 }  // namespace
