@@ -158,10 +158,14 @@ ArmPose ArmPose::preset(const std::string& name) {
   if (name == "rest") return {0.0, 1.0, 6.0};
   if (name == "out") return {90.0, 1.0, 0.0};
   if (name == "up") return {160.0, 0.9, 0.0};  // bent a little: the hand stays in the hands stage's search rectangle
-  if (name == "down") return {30.0, 1.0, 0.0};
-  // In front of the chest (above the body centre) and in front of the belly (below it), near the midline.
+  // Straight, out and down: 50 deg from down is DOWN by decide's lambda4 (up to 63 deg), and far enough from a
+  // hanging arm that a person reads it as a gesture (the real photos' keypoint truth calls a straight arm within
+  // 45 deg of down at rest).
+  if (name == "down") return {50.0, 1.0, 0.0};
+  // In front of the chest (above the body centre) and in front of the belly (below it, above the hips: a hand at
+  // the hip joint, 0.45 m below the shoulder, rests by the real photos' truth), near the midline.
   if (name == "front_high") return from_hand_offset(-0.14, -0.14, 0.30);
-  if (name == "front_low") return from_hand_offset(-0.14, -0.45, 0.25);
+  if (name == "front_low") return from_hand_offset(-0.14, -0.36, 0.32);
   throw ScenarioError("unknown arm preset '" + name + "' (rest, out, up, down, front_high, front_low)");
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace gpilot {
 
@@ -56,8 +57,8 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
   return t;
 }
 
-ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGestureParams& p, int shoulder, int elbow,
-                    int wrist, int pinky, int index) {
+ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGestureParams& p,
+                    const std::optional<cv::Rect2f>& user_box, int shoulder, int elbow, int wrist, int pinky, int index) {
   ArmReading a;
   const cv::Point2f S = at(lm, shoulder), E = at(lm, elbow), W = at(lm, wrist);
   const cv::Point2f knuckles = (at(lm, pinky) + at(lm, index)) * 0.5f;
@@ -75,13 +76,18 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   const bool in_span = W.x >= t.span_min_x && W.x <= t.span_max_x;
   const bool at_face = length(W - t.face) <= t.face_radius;
   const bool straight = a.straightness >= p.out_min_straightness;
-  const bool hanging = straight && below_centre && a.from_down_deg < p.out_min_from_down_deg;
-  // Nearer the camera than its shoulder by front_min_depth shoulder widths: a hand held out in front of the
-  // body, which the image alone cannot tell from one hanging in front of the thighs.
-  const bool forward = lm[shoulder].z - lm[wrist].z >= p.front_min_depth * t.shoulder_width;
-  if (straight && (above_shoulders || (a.from_down_deg >= p.out_min_from_down_deg && !in_span)))
-    a.pose = ArmPose::Out;  // stretched out: up, sideways, or pointing down away from the body
-  else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && (!hanging || forward))
+  // A straight arm nearer down than OUT hangs, unless its wrist lies between the hips in x: an arm cannot hang
+  // through the body, so that hand is held in front of it (the hand low in front, seen from the front).
+  a.wrist_between_hips = W.x > std::min(t.left_hip.x, t.right_hip.x) && W.x < std::max(t.left_hip.x, t.right_hip.x);
+  const bool hanging = straight && below_centre && !(p.front_wrist_between_hips && a.wrist_between_hips);
+  // The paper's Alg. 1 takes a hand beside the user's box for an arm out: a straight arm on its way out (or down
+  // and away) is out once its hand leaves the box, a little nearer down than an arm judged without the box.
+  a.hand_beside_box = user_box && !user_box->contains(a.hand);
+  const bool out_of_box = a.hand_beside_box && a.from_down_deg >= p.out_beside_box_min_from_down_deg;
+  const bool raised = above_shoulders && a.straightness >= p.out_raised_min_straightness;
+  if (raised || (straight && (a.from_down_deg >= p.out_min_from_down_deg || out_of_box)))
+    a.pose = ArmPose::Out;  // stretched out: up, sideways, or down and away from the body
+  else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && !hanging)
     a.pose = a.hand.y > t.body_centre.y ? ArmPose::FrontLow : ArmPose::FrontHigh;  // as the vector will say
   else if (hanging || below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
     a.pose = ArmPose::Rest;  // hanging, or the hand down by the hips
@@ -106,7 +112,20 @@ const char* arm_pose_name(ArmPose a) {
   return "?";
 }
 
-PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p) {
+std::string describe_pose_gesture(const PoseGesture& g) {
+  const auto arm = [](const char* side, const ArmReading& a) {
+    char text[96];
+    if (a.pose == ArmPose::Unseen)
+      std::snprintf(text, sizeof text, "%s %s", side, arm_pose_name(a.pose));
+    else
+      std::snprintf(text, sizeof text, "%s %s (s %.2f, %.0f deg%s%s)", side, arm_pose_name(a.pose), a.straightness, a.from_down_deg,
+                    a.wrist_between_hips ? ", between the hips" : "", a.hand_beside_box ? ", beside the box" : "");
+    return std::string(text);
+  };
+  return std::string(g.rule) + "; " + arm("left", g.left) + ", " + arm("right", g.right);
+}
+
+PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Rect2f>& user_box) {
   PoseGesture g;
   for (const PoseLandmark& l : lm)
     if (!(std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z) && std::isfinite(l.visibility))) {
@@ -124,8 +143,8 @@ PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& 
     g.rule = "shoulders not seen";
     return g;
   }
-  g.left = read_arm(lm, t, p, L::kLeftShoulder, L::kLeftElbow, L::kLeftWrist, L::kLeftPinky, L::kLeftIndex);
-  g.right = read_arm(lm, t, p, L::kRightShoulder, L::kRightElbow, L::kRightWrist, L::kRightPinky, L::kRightIndex);
+  g.left = read_arm(lm, t, p, user_box, L::kLeftShoulder, L::kLeftElbow, L::kLeftWrist, L::kLeftPinky, L::kLeftIndex);
+  g.right = read_arm(lm, t, p, user_box, L::kRightShoulder, L::kRightElbow, L::kRightWrist, L::kRightPinky, L::kRightIndex);
   // The paper's gestures are made with one arm while the other does not command: two arms that both command (a
   // T-pose, arms crossed on the chest, one out and one in front) are no command. A hand at the face or on the head
   // or a bent arm raised (OTHER) commands nothing itself and does not stop the other arm's gesture.

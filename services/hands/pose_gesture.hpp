@@ -4,6 +4,9 @@
 // centre p_bc, image pixels. Pure and stateless: the same landmarks give the same observation.
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include <opencv2/core/types.hpp>
 
 #include "hands/hand_detector.hpp"
@@ -20,6 +23,8 @@ struct ArmReading {
   cv::Point2f hand;               //!< the hand's point (wrist towards the knuckles), pixels
   double straightness = 0;        //!< |W-S| / (|S-E| + |E-W|)
   double from_down_deg = 0;       //!< angle between shoulder->wrist and image-down, 0..180
+  bool wrist_between_hips = false;        //!< the wrist between the hips in x
+  bool hand_beside_box = false;   //!< the hand's point outside the user box
 };
 
 struct PoseGesture {
@@ -34,6 +39,11 @@ struct PoseGesture {
   const char* rule = "";          //!< which rule decided the person's observation
 };
 
-PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p);
+// user_box: the tracker's box of the user (the paper's Alg. 1 calls a hand beside it out), pixels; none: not used.
+PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p,
+                              const std::optional<cv::Rect2f>& user_box = std::nullopt);
+
+// "rule; left POSE (s straightness, angle from down[, between the hips]), right ...": what decided, for CSVs and logs.
+std::string describe_pose_gesture(const PoseGesture& g);
 
 }  // namespace gpilot

@@ -10,15 +10,21 @@ namespace gpilot {
 
 struct PoseGestureParams {
   double min_visibility = 0.5;        //!< an arm's shoulder, elbow and wrist need at least this visibility to be read
-  double out_min_straightness = 0.85; //!< OUT: |W-S| / (|S-E| + |E-W|) at least this (a straight arm)
-  double out_min_from_down_deg = 25;  //!< OUT below the shoulders: the arm at least this far from straight down with
-                                      //!< the wrist beside the torso (the paper's DOWN arm points about 30 deg from
-                                      //!< down; a straight arm nearer down hangs at rest)
+  double out_min_straightness = 0.75; //!< OUT: |W-S| / (|S-E| + |E-W|) at least this (a straight arm: the model's
+                                      //!< landmarks of a straight arm measure less straight than the hand-drawn
+                                      //!< keypoints, whose truth takes 0.85)
+  double out_raised_min_straightness = 0.7; //!< OUT with the wrist above the shoulders: at least this straight (a raised
+                                          //!< arm's landmarks bend more than its pose; a hand on the head is ~0.5)
+  double out_min_from_down_deg = 40;  //!< OUT below the shoulders: a straight arm at least this far from straight down
+                                      //!< (a straight arm nearer down hangs at rest, as the real photos' keypoint
+                                      //!< truth has it; DOWN is the arm out and down, 40..63 deg with decide's lambda4)
+  double out_beside_box_min_from_down_deg = 25; //!< OUT: a straight arm at least this far from down whose hand is
+                                                //!< outside the user box (the paper's Alg. 1: a hand beside the body
+                                                //!< box is out); 180: the box is not used
   double rest_max_from_down_deg = 45; //!< REST: a bent arm whose hand is below the body centre, at most this far from
                                       //!< straight down, rests (a hand on the hip)
-  double front_min_depth = 0.6;       //!< FRONT: a straight arm hanging in the torso's span is a hand in front of the
-                                      //!< body when its wrist is this many shoulder widths nearer the camera than its
-                                      //!< shoulder (BlazePose's z)
+  bool front_wrist_between_hips = true; //!< FRONT: a straight arm whose wrist lies between the hips in x is held in
+                                        //!< front of the body, not hanging (the hand low in front, seen from ahead)
   double span_margin = 0.1;           //!< the torso's span in x is its shoulders' and hips' extent grown by this many
                                       //!< torso heights each side
   double face_radius = 0.4;           //!< a wrist within this many shoulder widths of the face's centre (nose, eyes,
@@ -30,9 +36,11 @@ struct PoseGestureParams {
   void visit(V& v) {
     v("min_visibility", min_visibility, 0.0, 1.0, "an arm is read when its shoulder, elbow and wrist are at least this visible");
     v("out_min_straightness", out_min_straightness, 0.0, 1.0, "OUT: |wrist-shoulder| / (upper arm + forearm) at least this");
-    v("out_min_from_down_deg", out_min_from_down_deg, 0.0, 180.0, "OUT below the shoulders: at least this far from straight down, the wrist beside the torso");
+    v("out_raised_min_straightness", out_raised_min_straightness, 0.0, 1.0, "OUT with the wrist above the shoulders: straightness at least this");
+    v("out_min_from_down_deg", out_min_from_down_deg, 0.0, 180.0, "OUT below the shoulders: a straight arm at least this far from straight down");
+    v("out_beside_box_min_from_down_deg", out_beside_box_min_from_down_deg, 0.0, 180.0, "OUT: a straight arm this far from down with the hand outside the user box (180: box not used)");
     v("rest_max_from_down_deg", rest_max_from_down_deg, 0.0, 180.0, "REST: a bent arm with the hand below the body centre, at most this far from down");
-    v("front_min_depth", front_min_depth, 0.0, 10.0, "FRONT: a hanging arm's wrist this many shoulder widths nearer the camera than its shoulder");
+    v("front_wrist_between_hips", front_wrist_between_hips, "FRONT: a straight arm with the wrist between the hips in x is in front of the body, not hanging");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");
     v("face_radius", face_radius, 0.0, 2.0, "a wrist within this many shoulder widths of the face centre is at the face (no command)");
     v("hand_beyond_wrist", hand_beyond_wrist, 0.0, 1.5, "hand point: this share of the way from the wrist to the knuckles");

@@ -35,6 +35,12 @@ HandsOutput PoseHandMethod::observe(const cv::Mat& bgr, const UserView& user, in
   if (!user.tracking) return out;
 
   const PoseResult r = pose_.estimate(bgr, user.box, utime);
+  if (r.nonfinite) {
+    // A net that computes NaN or Inf (a damaged model file, a numeric fault) says nothing about the user: the
+    // frame is refused (a counted rejection in HEALTH, no HAND_OBS), never read as a pose.
+    out.refused = "the pose model gave a non-finite output (NaN/Inf): no observation";
+    return out;
+  }
   PoseDiagnostics diagnostics;
   diagnostics.score = r.pose_flag;
   if (!r.found) {
@@ -43,8 +49,8 @@ HandsOutput PoseHandMethod::observe(const cv::Mat& bgr, const UserView& user, in
   }
   diagnostics.landmarks = r.landmarks;
   out.pose = diagnostics;
-  const PoseGesture g = read_pose_gesture(r.landmarks, params_.pose_gesture);
-  out.pose->reading = std::string(g.rule) + "; left " + arm_pose_name(g.left.pose) + ", right " + arm_pose_name(g.right.pose);
+  const PoseGesture g = read_pose_gesture(r.landmarks, params_.pose_gesture, user.box);
+  out.pose->reading = describe_pose_gesture(g);
   if (!g.torso_seen) return out;
   out.shoulder_centre = g.shoulder_centre;
   out.body_centre = g.body_centre;

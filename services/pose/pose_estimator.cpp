@@ -154,6 +154,7 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
     out = landmark_.run(bgr, *roi);
     if (!out.finite) {
       ++counters_.nonfinite_outputs;
+      r.nonfinite = true;
       return lost(r);
     }
   } else {
@@ -161,6 +162,7 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
     r.detector_ran = true;
     const std::optional<Seed> s = seed(bgr, user_box, nonfinite);
     if (nonfinite) ++counters_.nonfinite_outputs;
+    r.nonfinite = nonfinite;
     if (!s) return lost(r);
     r.roi = s->roi;
     out = s->out;

@@ -36,6 +36,7 @@ struct PoseResult {
   PoseLandmarks landmarks{};      //!< frame pixels, smoothed
   PoseRoi roi;                    //!< the ROI the landmark model saw (size 0 when it did not run)
   bool detector_ran = false;      //!< the person detector ran this frame
+  bool nonfinite = false;         //!< a net gave NaN/Inf this frame (counted in counters.nonfinite_outputs)
   PoseCounters counters;          //!< totals since construction
 };
 

@@ -1,9 +1,11 @@
 // Fuzz target: the hands stage core fed a sequence of small frames (raw or JPEG) and USER_TRACKs (as
 // check_message lets them through), pair by pair as gpilot-hands takes them (hands_on_pair: decode, size
-// check, the method make_hand_method builds, with its skin adaptation). Each input is one sequence on a reset observer. Whatever it
-// publishes must be a HAND_OBS that check_message accepts (what decide takes).
+// check, the method make_hand_method builds: the input's first byte picks pose or skin). Each input is one sequence on
+// a reset method. Whatever it publishes must be a HAND_OBS that check_message accepts (what decide takes).
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 
 #include "fuzz_input.hpp"
 #include "hands/hands_core_factory.hpp"
@@ -15,8 +17,14 @@
 
 namespace {
 
-gpilot::HandMethod& method() {
-  static const std::unique_ptr<gpilot::HandMethod> m = gpilot::make_hand_method(gpilot::HandsParams{});
+gpilot::HandMethod& method(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<gpilot::HandMethod>> built;
+  auto& m = built[name];
+  if (!m) {
+    gpilot::HandsParams params;
+    params.method = name;
+    m = gpilot::make_hand_method(params);
+  }
   return *m;
 }
 
@@ -24,7 +32,7 @@ gpilot::HandMethod& method() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   gpilot::fuzz::Input in(data, size);
-  gpilot::HandMethod& obs_core = method();
+  gpilot::HandMethod& obs_core = method(in.flag() ? "pose" : "skin");
   obs_core.reset();
   gpilot::ImageLimits limits;
   limits.max_width = limits.max_height = 256;

@@ -56,7 +56,7 @@ user_track_t track(int64_t seq, int8_t status = user_track_t::STATUS_TRACKING) {
 
 TEST(HandsService, PairsBySeqAndCountsTheUnmatched) {
   test::ChildProcess service(
-      {std::string(GPILOT_BIN_DIR) + "/gpilot-hands", "--lcm-url", kUrl, "--set", "hands.match_window=3"});
+      {std::string(GPILOT_BIN_DIR) + "/gpilot-hands", "--lcm-url", kUrl, "--set", "hands.match_window=3", "--set", "hands.method=skin"});
   ASSERT_GT(service.pid(), 0) << "cannot start gpilot-hands";
   BusNode bus("test-hands", kUrl);
   std::map<int64_t, hand_obs_t> obs;

@@ -283,7 +283,7 @@ TEST(EvalHandsCli, GivenARealClipOfAManAtRestWhenRunThenNoCommandWouldMoveTheDro
   EXPECT_EQ(std::count(std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>(), '\n'), 54);
   EXPECT_GT(fs::file_size(dir / "f.mp4"), 10000u);
   // The clip does defeat the paper's stage: it flies FINE on the shirt.
-  const ToolRun paper = run_tool("--video " + kRestingClip + " --init-box 261,50,39,132 --json --set hands.skin.adapt.enabled=false "
+  const ToolRun paper = run_tool("--video " + kRestingClip + " --init-box 261,50,39,132 --json --set hands.method=skin --set hands.skin.adapt.enabled=false "
                                  "--set hands.max_blob_hand_areas=0 --set hands.reach_ratio=0 --set hands.out_min_angle_deg=0 "
                                  "--set hands.arm_connected=false --set hands.front_max_upright=0 --set hands.front_max_hand_areas=0",
                                  dir);

@@ -33,6 +33,7 @@ TEST(HandObsBox, GivenAFaceWhoseFittedRatiosDifferFromThePresetWhenObservedThenA
   cv::rectangle(frame, cv::Rect(face), kSkin, cv::FILLED);
   cv::rectangle(frame, cv::Rect(230, 130, 18, 18), kSkin, cv::FILLED);
   HandsParams p;
+  p.method = "skin";
   p.arm_connected = false;  // no arm drawn: the box is what is tested here
   const auto method = make_hand_method(p);
   user_track_t track{};

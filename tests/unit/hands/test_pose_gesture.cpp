@@ -1,5 +1,7 @@
 // The paper's observation read from body landmarks: known poses of a person facing the camera, drawn by hand.
 // The person's left is the image's right. Shoulders at y 100, hips at y 200, shoulders 80 px apart.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "hands/pose_gesture.hpp"
@@ -146,14 +148,53 @@ TEST(PoseGesture, HipsBelowTheFrameLeaveAnArmOutButNoHandInFront) {
 }
 
 TEST(PoseGesture, ABentArmIsNotOutAndTheStraightnessLimitDecides) {
-  // The right arm out with the elbow dropped: straightness 100 / (2 x 61.03) = 0.82.
-  const Arm bent{{230, 135}, {180, 100}};
+  // The right arm out with the elbow dropped: straightness 100 / (2 x 70.71) = 0.71 (the limit: 0.75).
+  const Arm bent{{230, 150}, {180, 100}};
   const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, bent), PoseGestureParams{});
-  EXPECT_NEAR(g.right.straightness, 100.0 / (2 * std::hypot(50.0, 35.0)), 1e-6);
+  EXPECT_NEAR(g.right.straightness, 100.0 / (2 * std::hypot(50.0, 50.0)), 1e-6);
   EXPECT_NE(g.right.pose, ArmPose::Out);
   PoseGestureParams lenient;
-  lenient.out_min_straightness = 0.8;
+  lenient.out_min_straightness = 0.7;
+  // Raised above the shoulders an arm needs only 0.7: this one is 0.725 (a hand on the head is ~0.6).
+  const Arm raised{{230, 50}, {275, 0}};
+  const PoseGesture up = read_pose_gesture(standing({{365, 150}, {368, 200}}, raised), PoseGestureParams{});
+  EXPECT_NEAR(up.right.straightness, 100.125 / (std::hypot(50.0, 50.0) + std::hypot(45.0, 50.0)), 1e-3);
+  EXPECT_EQ(up.kind, HandKind::Out) << up.rule;
+  EXPECT_LT(up.vector.y, 0);
   EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, bent), lenient).kind, HandKind::Out);
+}
+
+TEST(PoseGesture, AStraightArmDownAndAwayIsOutANearerOneHangs) {
+  // The person's right arm straight, 110 px long, at 50 deg and at 30 deg from straight down (the limit: 40).
+  const auto arm_at = [](double deg) {
+    const cv::Point2f s(280, 100), d(static_cast<float>(-std::sin(deg * M_PI / 180)), static_cast<float>(std::cos(deg * M_PI / 180)));
+    return Arm{s + d * 55.0f, s + d * 110.0f};
+  };
+  const PoseGesture down = read_pose_gesture(standing({{365, 150}, {368, 200}}, arm_at(50)), PoseGestureParams{});
+  ASSERT_EQ(down.kind, HandKind::Out) << down.rule;
+  EXPECT_NEAR(down.right.from_down_deg, 50, 1e-3);
+  EXPECT_GT(down.vector.y, 0.5 * std::abs(down.vector.x));  // decide's lambda4 makes it DOWN
+  const PoseGesture hanging = read_pose_gesture(standing({{365, 150}, {368, 200}}, arm_at(30)), PoseGestureParams{});
+  EXPECT_EQ(hanging.right.pose, ArmPose::Rest);
+  EXPECT_EQ(hanging.kind, HandKind::None);
+  PoseGestureParams lower;
+  lower.out_min_from_down_deg = 25;
+  EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, arm_at(30)), lower).kind, HandKind::Out);
+}
+
+TEST(PoseGesture, AStraightArmWithTheWristBetweenTheHipsIsInFrontNotHanging) {
+  // Straight, 12 deg from down, the wrist at x 300 between the hips (295..345), above the hip line: held in
+  // front of the belly. The same arm with its wrist beside the hips (x 272) hangs.
+  const Arm in_front{{290, 147.5f}, {300, 195}};
+  const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, in_front), PoseGestureParams{});
+  EXPECT_TRUE(g.right.wrist_between_hips);
+  EXPECT_EQ(g.right.pose, ArmPose::FrontLow);
+  ASSERT_EQ(g.kind, HandKind::Front) << g.rule;
+  EXPECT_GT(g.vector.y, 0);
+  EXPECT_FALSE(read_pose_gesture(standing(), PoseGestureParams{}).right.wrist_between_hips);
+  PoseGestureParams off;
+  off.front_wrist_between_hips = false;
+  EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, in_front), off).right.pose, ArmPose::Rest);
 }
 
 TEST(PoseGesture, NonFiniteLandmarksGiveNothing) {
