@@ -181,11 +181,17 @@ void BusNode::subscribe_raw(const std::string& channel, RawHandler fn, int queue
 }
 
 void BusNode::on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub) {
-  try {
-    sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime);
-  } catch (const std::exception& e) {  // never through LCM's C dispatch
-    sub->node->stats_.rejected(channel + ": the handler failed on this message: " + e.what());
-  }
+  sub->node->run_handler(channel, [&] { sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime); });
+}
+
+void BusNode::handler_failed(const std::string& channel, const std::string& what) {
+  const int64_t n = stats_.failed(channel + ": " + what);
+  // Every failure counts in HEALTH; the log gets the 1st, 2nd, 4th, 8th ... so that a defect hit on every
+  // frame does not flood it.
+  if ((n & (n - 1)) == 0)
+    log_error("the handler of %s failed (%lld so far): %s; a defect of this process, not a bad message: HEALTH "
+              "says ERROR until it restarts",
+              channel.c_str(), static_cast<long long>(n), what.c_str());
 }
 
 int BusNode::drain() {

@@ -4,8 +4,10 @@
 // A handler sees only messages that decoded exactly (LCM 1.3.1's generated decoders throw on a negative or
 // zero length: caught; a datagram with bytes after the message is not this message) and passed
 // check_message(); anything else is counted in HEALTH (rejected, last_reject_reason) and never reaches the
-// stage. A handler that throws does not unwind through LCM's C dispatch: the message is rejected with the
-// reason and the process keeps running.
+// stage. A handler's throw never unwinds through LCM's C dispatch, and the process keeps running: an
+// InputError (input_error.hpp: the message is unusable) is a counted rejection like bytes that do not decode;
+// anything else (std::logic_error, cv::Exception, std::bad_alloc, ...) is a defect of the process, not of
+// the message: logged at error level, and HEALTH says ERROR from then on (StageStats::failed).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +25,7 @@
 #include "bus_params.hpp"
 #include "bus_signature.hpp"
 #include "clock.hpp"
+#include "input_error.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "message_checks.hpp"
 #include "stream_guard.hpp"
@@ -215,6 +218,10 @@ class BusNode {
     RawHandler fn;
   };
   static void on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub);
+  // Runs a handler: an InputError rejects the message, any other throw is the process's failure (logged).
+  template <class Fn>
+  void run_handler(const std::string& channel, Fn&& handler);
+  void handler_failed(const std::string& channel, const std::string& what);
 
   template <class Msg>
   static void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub);
@@ -313,13 +320,22 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   const int64_t t0 = monotonic_utime();
   const bool outer = !nested;
   if (outer) sub->in_use = true;
-  try {
-    sub->handler(msg, arrival);
-  } catch (const std::exception& e) {
-    node.stats_.rejected(channel + ": the handler failed on this message: " + e.what());
-  }
+  node.run_handler(channel, [&] { sub->handler(msg, arrival); });
   if (outer) sub->in_use = false;
   node.stats_.processing_time(monotonic_utime() - t0);
+}
+
+template <class Fn>
+void BusNode::run_handler(const std::string& channel, Fn&& handler) {
+  try {
+    handler();
+  } catch (const InputError& e) {
+    stats_.rejected(channel + ": " + e.what());
+  } catch (const std::exception& e) {
+    handler_failed(channel, e.what());
+  } catch (...) {
+    handler_failed(channel, "an exception that is not a std::exception");
+  }
 }
 
 }  // namespace gpilot
