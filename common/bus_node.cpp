@@ -220,7 +220,7 @@ int BusNode::handle_for(int timeout_ms) {
 
 void BusNode::every(double period_s, std::function<void()> fn) {
   const int64_t period = std::max<int64_t>(1, seconds_to_utime(period_s));
-  timers_.push_back(Timer{period, monotonic_utime() + period, std::move(fn)});
+  timers_.push_back(Timer{period, timer_clock_() + period, std::move(fn)});
 }
 
 void BusNode::run_timers_at(int64_t utime) {
@@ -238,7 +238,7 @@ void BusNode::publish_health() {
 
 void BusNode::run_due_timers() {
   if (log_time_ >= 0) return;  // replay: fired by run_timers_at at the live instants
-  const int64_t now = monotonic_utime();
+  const int64_t now = timer_clock_();
   for (auto& t : timers_) {
     if (now < t.next_us) continue;
     t.fn();
@@ -250,7 +250,7 @@ void BusNode::run_due_timers() {
 bool BusNode::spin_once(int timeout_ms) {
   if (stopping()) return false;
   int wait_ms = timeout_ms;
-  const int64_t now = monotonic_utime();
+  const int64_t now = timer_clock_();
   for (const auto& t : timers_)
     wait_ms = std::min<int>(wait_ms, static_cast<int>(std::max<int64_t>(0, (t.next_us - now + 999) / 1000)));
   if (handle_for(wait_ms) < 0) {

@@ -161,10 +161,16 @@ class BusNode {
   // Dispatches every message already queued (memq:// replay); returns how many were handled.
   int drain();
 
-  // Runs fn every period_s seconds from the loop, on the monotonic clock. In replay (the node on the log's
-  // clock, set_log_time) timers never fire by themselves: the replay fires them with run_timers_at at the
-  // instants the live process's did (a timer's output is stamped with now(), so the log says when).
+  // Runs fn every period_s seconds from the loop, on the timer clock (the monotonic clock unless a test set
+  // its own). In replay (the node on the log's clock, set_log_time) timers never fire by themselves: the
+  // replay fires them with run_timers_at at the instants the live process's did (a timer's output is stamped
+  // with now(), so the log says when).
   void every(double period_s, std::function<void()> fn);
+  // The clock the loop's timers run on (µs, never jumping back): monotonic_utime unless replaced. A test
+  // moves its own clock by hand and calls spin_once(0): the timers fire by that clock, not by how long the
+  // test happened to take. Set it before the first every().
+  using TimerClock = std::function<int64_t()>;
+  void set_timer_clock(TimerClock clock) { timer_clock_ = std::move(clock); }
   // Replay: the live process's timers fired at utime. Sets the clock to utime and runs every timer once (a
   // replayed stage has one: gpilot-flight's setpoint tick, its other timers belong to backends not replayed).
   void run_timers_at(int64_t utime);
@@ -279,6 +285,7 @@ class BusNode {
   StageStats stats_;
   std::vector<std::unique_ptr<SubscriptionBase>> subs_;
   std::vector<Timer> timers_;
+  TimerClock timer_clock_ = monotonic_utime;
   bool stop_requested_ = false;
 };
 
