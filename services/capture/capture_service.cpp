@@ -21,6 +21,10 @@
 namespace gpilot {
 namespace {
 
+// A paced source this many frame periods behind its ticks (a stall: a slow disk, a stopped process) restarts
+// its ticks from now instead of publishing the missed frames in a burst to catch up.
+constexpr int64_t kStallPeriods = 10;
+
 ground_truth_t to_message(const SyntheticTruth& t, int64_t utime, int64_t seq) {
   ground_truth_t m{};
   m.utime = utime;
@@ -228,7 +232,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     } else {
       next_tick += period;
       const int64_t now = monotonic_utime();
-      if (now - next_tick > 10 * period) next_tick = now;  // far behind (a stall): no burst to catch up
+      if (now - next_tick > kStallPeriods * period) next_tick = now;  // far behind (a stall): no burst to catch up
       serve_until(next_tick);
     }
   }

@@ -10,6 +10,22 @@
 
 namespace gpilot {
 
+namespace {
+
+// A user box whose part in the image is narrower or shorter than this many pixels holds no hand to find: its
+// hand square (box width / 4) would be under a pixel.
+constexpr int kMinBoxSidePx = 4;
+
+// A forearm hanging at rest beside the body has its middle in the outer half of its side of the box: at least
+// this many box widths from p_uc.x (each side is half a box wide).
+constexpr double kOuterHalfOfSideRatio = 0.25;
+
+// A colour is the torso's clothing when at least 1 in this many of the torso's pixels have it (0.5 %): rarer
+// colours there are its edges, shadows and what shows through, which an arm must not be joined by.
+constexpr int64_t kClothingColourOneIn = 200;
+
+}  // namespace
+
 const char* hand_kind_name(HandKind k) {
   switch (k) {
     case HandKind::Out: return "OUT";
@@ -50,7 +66,7 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.image = image;
   g.body_centre_in_view = square_in_view(g.body_centre, g.hand_side, image);
-  g.valid = g.box.width >= 4 && g.box.height >= 4;
+  g.valid = g.box.width >= kMinBoxSidePx && g.box.height >= kMinBoxSidePx;
   return g;
 }
 
@@ -149,7 +165,7 @@ void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
   // middle inside the box in the outer half of its side, reaching below the body centre. That side's arm is down:
   // no hand of it is stretched out (a skin-coloured wall at the frame's bottom beside a resting user was an OUT
   // hand, joined to the torso through the resting forearm: a false DOWN in the closed-loop nuisances runs).
-  const double quarter = 0.25 * g.width;
+  const double outer_half = kOuterHalfOfSideRatio * g.width;
   for (int i = 1; i < n; ++i) {
     if (blob_dropped_[static_cast<size_t>(i)]) continue;
     const int* st = stats_.ptr<int>(i);
@@ -157,7 +173,7 @@ void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
     const int w = st[cv::CC_STAT_WIDTH], h = st[cv::CC_STAT_HEIGHT];
     const double cx = x + w / 2.0;
     if (h <= params_.front_max_upright * w || y + h <= g.body_centre.y) continue;
-    if (cx < g.box.x || cx >= g.box.br().x || std::abs(cx - g.shoulder_centre.x) < quarter) continue;
+    if (cx < g.box.x || cx >= g.box.br().x || std::abs(cx - g.shoulder_centre.x) < outer_half) continue;
     hanging_[cx < g.shoulder_centre.x ? 0 : 1] = true;
   }
 }
@@ -197,7 +213,7 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const Hand
   // they join no other hand to it either.
   const cv::Mat roi = bgr(g.roi);
   arm_.create(roi.size(), CV_8UC1);
-  const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / 200);
+  const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / kClothingColourOneIn);
   for (int y = 0; y < roi.rows; ++y) {
     const uint8_t* p = roi.ptr<uint8_t>(y);
     const uint8_t* m = skin.ptr<uint8_t>(y);
