@@ -85,7 +85,26 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     r.geometry = g;
     return r;
   }
-  (skin ? *skin : skin_).classify(bgr(g.roi), mask_);
+  const cv::Mat& arm_skin = make_skin_mask(bgr, skin ? *skin : skin_, g);
+  // One labelling of the skin components serves both shape rules (the blobs dropped are gone whole, so the
+  // components left keep their labels and stats).
+  const bool keep_unopened = &arm_skin == &unopened_;
+  const bool hanging_rule = params_.out_not_beside_hanging_forearm && params_.front_max_upright > 0;
+  const int components = params_.max_blob_hand_areas > 0 || hanging_rule
+                             ? cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S)
+                             : 0;
+  const int dropped = drop_large_blobs(mask_, g, components, keep_unopened ? &unopened_ : nullptr);
+  find_hanging_forearms(g, hanging_rule ? components : 0);
+  HandResult res = run(mask_, g.roi.tl(), g);
+  const int armless = out_on_an_arm(bgr, arm_skin, g, res);
+  front_not_a_forearm(g, res);
+  res.blobs_dropped = dropped;
+  res.armless_dropped = armless;
+  return res;
+}
+
+const cv::Mat& HandDetector::make_skin_mask(const cv::Mat& bgr, const SkinClassifier& skin, const HandGeometry& g) {
+  skin.classify(bgr(g.roi), mask_);
   // The arm test (on_an_arm) reads the skin before the opening: a far user's arm is 2-3 px thick, and the
   // opening that clears speckles from the hand candidates cut it from the hand on some frames and not others
   // (an OUT lost for 3 s at 9.8 m).
@@ -95,7 +114,6 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     const int side = 2 * g.open_radius + 1;
     cv::morphologyEx(mask_, mask_, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
   }
-  cv::Mat& arm_skin = keep_unopened ? unopened_ : mask_;
   // Face/neck and legs/feet: rows of the user box (box columns only) cleared by the preset ratios.
   const cv::Rect top(g.box.x, g.box.y, g.box.width, std::max(0, g.face_rows_end - g.box.y));
   const cv::Rect bottom(g.box.x, g.legs_rows_begin, g.box.width, std::max(0, g.box.br().y - g.legs_rows_begin));
@@ -104,15 +122,10 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
       mask_(r - g.roi.tl()).setTo(0);
       if (keep_unopened) unopened_(r - g.roi.tl()).setTo(0);
     }
-  // One labelling of the skin components serves both shape rules (the blobs dropped are gone whole, so the
-  // components left keep their labels and stats).
-  const bool hanging_rule = params_.out_not_beside_hanging_forearm && params_.front_max_upright > 0;
-  const int components = params_.max_blob_hand_areas > 0 || hanging_rule
-                             ? cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S)
-                             : 0;
-  const int dropped = drop_large_blobs(mask_, g, components, keep_unopened ? &unopened_ : nullptr);
-  find_hanging_forearms(g, hanging_rule ? components : 0);
-  HandResult res = run(mask_, g.roi.tl(), g);
+  return keep_unopened ? unopened_ : mask_;
+}
+
+int HandDetector::out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& g, HandResult& res) {
   // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
   // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
   int armless = 0;
@@ -130,6 +143,10 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     }
     res = run(mask_, g.roi.tl(), g);
   }
+  return armless;
+}
+
+void HandDetector::front_not_a_forearm(const HandGeometry& g, HandResult& res) {
   // A FRONT hand is in front of the body, not a forearm hanging at the torso's edge: a skin component much
   // taller than wide that reaches below the body centre is dropped, and Alg. 2 looks again (three times).
   for (int tries = 0; res.kind == HandKind::Front && (params_.front_max_upright > 0 || params_.front_max_hand_areas > 0);
@@ -143,20 +160,19 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     const bool torso_sized = params_.front_max_hand_areas > 0 &&
                              area > params_.front_max_hand_areas * static_cast<double>(g.hand_side) * g.hand_side;
     if (!hanging && !torso_sized) break;
-    ++res.upright_dropped;
+    const int upright = res.upright_dropped + 1;
     if (tries + 1 >= kMaxDroppedCandidates) {
+      // Given up: no hand this frame (HAND_OBS's skin counts zero, as for any NONE the rules make), but the
+      // result still says how many candidates were dropped.
       res = HandResult{};
       res.geometry = g;
+      res.upright_dropped = upright;
       break;
     }
-    const int upright = res.upright_dropped;
     erase_component(g, res.hand);
     res = run(mask_, g.roi.tl(), g);
     res.upright_dropped = upright;
   }
-  res.blobs_dropped = dropped;
-  res.armless_dropped = armless;
-  return res;
 }
 
 void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
