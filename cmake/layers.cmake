@@ -1,23 +1,39 @@
 # The layers the tree keeps, checked at configure time: a stage's core is a plain class, inputs in, outputs
 # out, no bus and no clock inside (DEVELOPERS.md). So a core library
 #   - does not link gpilot_common (the bus node, the service CLI), directly or through another library;
-#   - has no source or header that includes the bus (bus_node.hpp, service_cli.hpp, <lcm/lcm-cpp.hpp>,
-#     <lcm/lcm.h>). Message types (gpilot_lcmtypes, header-only structs) are allowed;
-#   - has no source or header that opens a socket (<sys/socket.h>, <netinet/...>, <arpa/inet.h>, <netdb.h>,
-#     <sys/un.h>): the I/O is the adapter's (gpilot-flight's MAVLink UDP socket is in its service library);
-#   - has no source or header that reads a clock (wall_utime(), monotonic_utime(), Pacer, std::chrono's
+#   - has no file that includes the bus (bus_node.hpp, service_cli.hpp, <lcm/lcm-cpp.hpp>, <lcm/lcm.h>).
+#     Message types (gpilot_lcmtypes, header-only structs) are allowed;
+#   - has no file that opens a socket (<sys/socket.h>, <netinet/...>, <arpa/inet.h>, <netdb.h>, <sys/un.h>):
+#     the I/O is the adapter's (gpilot-flight's MAVLink UDP socket is in its service library);
+#   - has no file that reads a clock (wall_utime(), monotonic_utime(), Pacer, std::chrono's
 #     system/steady/high_resolution clocks, clock_gettime, gettimeofday): time comes in as an argument, so a
-#     replay on the log's clock gives what the live run gave. clock.hpp's unit conversions are allowed.
+#     replay on the log's clock gives what the live run gave. clock.hpp's unit conversions are allowed (the
+#     file itself, which defines the clocks, is not read for this rule);
+#   - uses no other stage's code (links its core or params, includes a header of its folder) but where
+#     GPILOT_CROSS_STAGE_USES allows it.
+# "Its files" are its sources and every project header they include, directly or not (header-only files of
+# the core, its params header, common/ headers, another stage's), found as the compiler would: beside the
+# includer, then on the core's include path.
 # A core that breaks a rule fails `cmake` with the library and the file named.
-# And common/ knows no stage (gpilot_check_common): no file of common/ includes a header of services/ (a stage
-# declares its config sections next to its Params, services/system lists them), and the common libraries
-# do not get services/ on their include path.
+# And common/ knows no stage (gpilot_check_common): no file of common/ or its subfolders includes a header of
+# services/ (a stage declares its config sections next to its Params, services/system lists them), and the
+# common libraries do not get services/ on their include path.
+# And tools use services, never the other way (gpilot_check_services): no file of services/ includes a header
+# of tools/, and no library of services/ links one of tools/.
 set(GPILOT_CORE_LIBRARIES gpilot_capture_core gpilot_tracker_core gpilot_hands_core gpilot_decide_core gpilot_flight_core
     gpilot_pose_core)
 set(GPILOT_BUS_LIBRARIES gpilot_common)
 set(GPILOT_COMMON_DIR ${CMAKE_SOURCE_DIR}/common)
 set(GPILOT_SERVICES_DIR ${CMAKE_SOURCE_DIR}/services)
 set(GPILOT_COMMON_LIBRARIES gpilot_config gpilot_common)
+set(GPILOT_TOOLS_DIR ${CMAKE_SOURCE_DIR}/tools)
+# The cross-stage uses a core may make, as "stage:other" (any of other's code) or "stage:other/header.hpp" (that
+# header only). Everything else a stage learns from another comes in its messages.
+#   - The pose core is a shared library of body landmarks (ARCHITECTURE.md, Models) that hands and the tracker
+#     may use (hands' pose method; its params nest the pose section).
+#   - The flight core takes decide's command as a value (decide/gesture_command.hpp: what GESTURE_CMD
+#     carries, header only), so that bridge and decider agree on one type.
+set(GPILOT_CROSS_STAGE_USES "hands:pose" "tracker:pose" "flight:decide/gesture_command.hpp")
 set(GPILOT_BUS_INCLUDE_REGEX "#[ \t]*include[ \t]*[<\"](bus_node\\.hpp|service_cli\\.hpp|lcm/lcm-cpp\\.hpp|lcm/lcm\\.h)[>\"]")
 set(GPILOT_SOCKET_INCLUDE_REGEX "#[ \t]*include[ \t]*<(sys/socket\\.h|netinet/[a-z_]+\\.h|arpa/inet\\.h|netdb\\.h|sys/un\\.h)>")
 set(GPILOT_CLOCK_REGEX "(wall_utime|monotonic_utime|clock_gettime|gettimeofday)[ \t]*\\(|(system|steady|high_resolution)_clock|Pacer")
@@ -54,11 +70,129 @@ function(gpilot_link_closure target out)
   set(${out} ${_seen} PARENT_SCOPE)
 endfunction()
 
+# `dir` and each folder directly in it: where a quoted include may find a file (services/ and each stage's).
+function(gpilot_dir_and_subdirs dir out)
+  file(GLOB _subdirs LIST_DIRECTORIES true "${dir}/*")
+  set(_dirs ${dir})
+  foreach(_d IN LISTS _subdirs)
+    if(IS_DIRECTORY ${_d})
+      list(APPEND _dirs ${_d})
+    endif()
+  endforeach()
+  set(${out} ${_dirs} PARENT_SCOPE)
+endfunction()
+
+# Whether `name` is a file in any of `dirs`.
+function(gpilot_found_in name dirs out)
+  set(${out} FALSE PARENT_SCOPE)
+  foreach(_d IN LISTS dirs)
+    if(EXISTS ${_d}/${name})
+      set(${out} TRUE PARENT_SCOPE)
+    endif()
+  endforeach()
+endfunction()
+
+# The quoted includes of `file`: the names (out_names) and the whole lines (out_lines), in order.
+function(gpilot_quoted_includes file out_names out_lines)
+  file(STRINGS ${file} _lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"[^\"]+\"")
+  set(_names)
+  foreach(_line IN LISTS _lines)
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*" "\\1" _name "${_line}")
+    list(APPEND _names ${_name})
+  endforeach()
+  set(${out_names} ${_names} PARENT_SCOPE)
+  set(${out_lines} ${_lines} PARENT_SCOPE)
+endfunction()
+
+# The stage a library belongs to (gpilot_<stage>_core, gpilot_<stage>_params, gpilot_<stage>_service), or "".
+function(gpilot_stage_of lib out)
+  if(lib MATCHES "^gpilot_([a-z0-9]+)_(core|params|service)$")
+    set(${out} ${CMAKE_MATCH_1} PARENT_SCOPE)
+  else()
+    set(${out} "" PARENT_SCOPE)
+  endif()
+endfunction()
+
+# The stage whose folder holds `file` (services/<stage>/...), or "".
+function(gpilot_stage_of_file file out)
+  set(${out} "" PARENT_SCOPE)
+  string(FIND "${file}" "${GPILOT_SERVICES_DIR}/" _at)
+  if(_at EQUAL 0)
+    string(LENGTH "${GPILOT_SERVICES_DIR}/" _n)
+    string(SUBSTRING "${file}" ${_n} -1 _rest)
+    if(_rest MATCHES "^([^/]+)/")
+      set(${out} ${CMAKE_MATCH_1} PARENT_SCOPE)
+    endif()
+  endif()
+endfunction()
+
+# Whether a core of `stage` may use `other`'s `header` (services/<other>/..., relative to services/).
+function(gpilot_cross_stage_allowed stage other header out)
+  set(${out} FALSE PARENT_SCOPE)
+  foreach(_use IN LISTS GPILOT_CROSS_STAGE_USES)
+    if(_use STREQUAL "${stage}:${other}" OR _use STREQUAL "${stage}:${header}")
+      set(${out} TRUE PARENT_SCOPE)
+    endif()
+  endforeach()
+endfunction()
+
+# The include path `target` compiles with: its own, and the interface of everything it links.
+function(gpilot_include_path target out)
+  get_target_property(_dirs ${target} INCLUDE_DIRECTORIES)
+  if(NOT _dirs)
+    set(_dirs)
+  endif()
+  gpilot_link_closure(${target} _closure)
+  foreach(_t IN LISTS _closure)
+    if(TARGET ${_t})
+      get_target_property(_iface ${_t} INTERFACE_INCLUDE_DIRECTORIES)
+      if(_iface)
+        list(APPEND _dirs ${_iface})
+      endif()
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES _dirs)
+  set(${out} ${_dirs} PARENT_SCOPE)
+endfunction()
+
+# Every project file `files` reach through quoted includes (themselves included), found beside the includer,
+# then on `path`; files outside the project (generated message headers, the system's) are not followed.
+function(gpilot_include_closure files path out)
+  set(_seen)
+  set(_todo ${files})
+  while(_todo)
+    list(POP_FRONT _todo _f)
+    if(_f IN_LIST _seen OR NOT EXISTS ${_f})
+      continue()
+    endif()
+    list(APPEND _seen ${_f})
+    get_filename_component(_here ${_f} DIRECTORY)
+    gpilot_quoted_includes(${_f} _names _lines)
+    foreach(_name IN LISTS _names)
+      foreach(_d ${_here} ${path})
+        if(EXISTS ${_d}/${_name} AND NOT IS_DIRECTORY ${_d}/${_name})
+          get_filename_component(_abs ${_d}/${_name} ABSOLUTE)
+          string(FIND "${_abs}" "${GPILOT_PROJECT_DIR}/" _inside)
+          if(_inside EQUAL 0 AND NOT _abs IN_LIST _seen)
+            list(APPEND _todo ${_abs})
+          endif()
+          break()
+        endif()
+      endforeach()
+    endforeach()
+  endwhile()
+  set(${out} ${_seen} PARENT_SCOPE)
+endfunction()
+
 function(gpilot_check_layers)
+  if(NOT DEFINED GPILOT_PROJECT_DIR)
+    set(GPILOT_PROJECT_DIR ${CMAKE_SOURCE_DIR})
+  endif()
   foreach(_core IN LISTS GPILOT_CORE_LIBRARIES)
     if(NOT TARGET ${_core})
       continue()
     endif()
+    gpilot_stage_of(${_core} _stage)
     gpilot_link_closure(${_core} _closure)
     foreach(_bus IN LISTS GPILOT_BUS_LIBRARIES)
       if(_bus IN_LIST _closure)
@@ -66,52 +200,72 @@ function(gpilot_check_layers)
                             "gpilot_lcmtypes, and keep the bus in the stage's service library")
       endif()
     endforeach()
+    foreach(_lib IN LISTS _closure)
+      gpilot_stage_of(${_lib} _other)
+      if(_stage AND _other AND NOT _other STREQUAL _stage)
+        gpilot_cross_stage_allowed(${_stage} ${_other} "" _ok)
+        if(NOT _ok)
+          message(FATAL_ERROR "${_core} links ${_lib} (stage ${_other}): a stage's core uses no other stage's code "
+                              "but the uses GPILOT_CROSS_STAGE_USES allows (cmake/layers.cmake); what it needs "
+                              "comes in a message")
+        endif()
+      endif()
+    endforeach()
     get_target_property(_dir ${_core} SOURCE_DIR)
     get_target_property(_sources ${_core} SOURCES)
+    set(_files)
     foreach(_src IN LISTS _sources)
       get_filename_component(_abs ${_src} ABSOLUTE BASE_DIR ${_dir})
       string(REGEX REPLACE "\\.cpp$" ".hpp" _hdr ${_abs})
-      foreach(_file ${_abs} ${_hdr})
-        if(EXISTS ${_file})
-          file(STRINGS ${_file} _bus_includes REGEX "${GPILOT_BUS_INCLUDE_REGEX}")
-          if(_bus_includes)
-            list(GET _bus_includes 0 _first)
-            message(FATAL_ERROR "${_file} (library ${_core}) includes the bus: ${_first}; a stage's core has no LCM")
-          endif()
-          file(STRINGS ${_file} _socket_includes REGEX "${GPILOT_SOCKET_INCLUDE_REGEX}")
-          if(_socket_includes)
-            list(GET _socket_includes 0 _first)
-            message(FATAL_ERROR "${_file} (library ${_core}) opens a socket: ${_first}; a stage's core has no I/O "
-                                "(the socket belongs in the stage's service library)")
-          endif()
-          file(STRINGS ${_file} _clock_reads REGEX "${GPILOT_CLOCK_REGEX}")
-          if(_clock_reads)
-            list(GET _clock_reads 0 _first)
-            message(FATAL_ERROR "${_file} (library ${_core}) reads a clock: ${_first}; a stage's core takes the time "
-                                "as an argument (the adapter reads BusNode::now)")
-          endif()
+      list(APPEND _files ${_abs} ${_hdr})
+    endforeach()
+    gpilot_include_path(${_core} _path)
+    gpilot_include_closure("${_files}" "${_path}" _reached)
+    foreach(_file IN LISTS _reached)
+      file(STRINGS ${_file} _bus_includes REGEX "${GPILOT_BUS_INCLUDE_REGEX}")
+      if(_bus_includes)
+        list(GET _bus_includes 0 _first)
+        message(FATAL_ERROR "${_file} (library ${_core}) includes the bus: ${_first}; a stage's core has no LCM")
+      endif()
+      file(STRINGS ${_file} _socket_includes REGEX "${GPILOT_SOCKET_INCLUDE_REGEX}")
+      if(_socket_includes)
+        list(GET _socket_includes 0 _first)
+        message(FATAL_ERROR "${_file} (library ${_core}) opens a socket: ${_first}; a stage's core has no I/O "
+                            "(the socket belongs in the stage's service library)")
+      endif()
+      if(NOT _file STREQUAL "${GPILOT_COMMON_DIR}/clock.hpp")
+        file(STRINGS ${_file} _clock_reads REGEX "${GPILOT_CLOCK_REGEX}")
+        if(_clock_reads)
+          list(GET _clock_reads 0 _first)
+          message(FATAL_ERROR "${_file} (library ${_core}) reads a clock: ${_first}; a stage's core takes the time "
+                              "as an argument (the adapter reads BusNode::now)")
         endif()
-      endforeach()
+      endif()
+      gpilot_stage_of_file(${_file} _other)
+      if(_stage AND _other AND NOT _other STREQUAL _stage)
+        file(RELATIVE_PATH _header ${GPILOT_SERVICES_DIR} ${_file})
+        gpilot_cross_stage_allowed(${_stage} ${_other} ${_header} _ok)
+        if(NOT _ok)
+          message(FATAL_ERROR "${_file} (stage ${_other}) is used by library ${_core}: a stage's core uses no other "
+                              "stage's code but the uses GPILOT_CROSS_STAGE_USES allows (cmake/layers.cmake); "
+                              "what it needs comes in a message")
+        endif()
+      endif()
     endforeach()
   endforeach()
   gpilot_check_common()
+  gpilot_check_services()
 endfunction()
 
 function(gpilot_check_common)
   # Every header a quoted include of a common/ file could reach in services/: the folder and each stage's.
-  file(GLOB _stage_dirs LIST_DIRECTORIES true "${GPILOT_SERVICES_DIR}/*")
-  set(_search ${GPILOT_SERVICES_DIR})
-  foreach(_d IN LISTS _stage_dirs)
-    if(IS_DIRECTORY ${_d})
-      list(APPEND _search ${_d})
-    endif()
-  endforeach()
-  file(GLOB _files "${GPILOT_COMMON_DIR}/*.hpp" "${GPILOT_COMMON_DIR}/*.cpp")
+  gpilot_dir_and_subdirs(${GPILOT_SERVICES_DIR} _search)
+  file(GLOB_RECURSE _files "${GPILOT_COMMON_DIR}/*.hpp" "${GPILOT_COMMON_DIR}/*.cpp")
   foreach(_file IN LISTS _files)
-    file(STRINGS ${_file} _includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"[^\"]+\"")
-    foreach(_line IN LISTS _includes)
-      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*" "\\1" _name "${_line}")
-      get_filename_component(_abs ${_name} ABSOLUTE BASE_DIR ${GPILOT_COMMON_DIR})
+    get_filename_component(_here ${_file} DIRECTORY)
+    gpilot_quoted_includes(${_file} _names _lines)
+    foreach(_name _line IN ZIP_LISTS _names _lines)
+      get_filename_component(_abs ${_name} ABSOLUTE BASE_DIR ${_here})
       set(_bad FALSE)
       if(EXISTS ${_abs})
         # a quoted include finds the file beside the includer first: bad only if that lies in services/
@@ -120,11 +274,7 @@ function(gpilot_check_common)
           set(_bad TRUE)
         endif()
       else()
-        foreach(_d IN LISTS _search)
-          if(EXISTS ${_d}/${_name})
-            set(_bad TRUE)
-          endif()
-        endforeach()
+        gpilot_found_in(${_name} "${_search}" _bad)
       endif()
       if(_bad)
         message(FATAL_ERROR "${_file} includes a stage's header: ${_line}; common/ knows no stage (a stage "
@@ -163,4 +313,71 @@ function(gpilot_check_common)
       endif()
     endforeach()
   endforeach()
+endfunction()
+
+# Tools use services, never the other way: no file of services/ includes a header of tools/ (found beside it, or
+# in tools/ or a tool's folder where services/ and common/ have none), and no library whose sources are in
+# services/ links a library whose sources are in tools/.
+function(gpilot_check_services)
+  gpilot_dir_and_subdirs(${GPILOT_TOOLS_DIR} _tools_search)
+  gpilot_dir_and_subdirs(${GPILOT_SERVICES_DIR} _own_search)
+  list(APPEND _own_search ${GPILOT_COMMON_DIR})
+  file(GLOB_RECURSE _files "${GPILOT_SERVICES_DIR}/*.hpp" "${GPILOT_SERVICES_DIR}/*.cpp")
+  foreach(_file IN LISTS _files)
+    get_filename_component(_here ${_file} DIRECTORY)
+    gpilot_quoted_includes(${_file} _names _lines)
+    foreach(_name _line IN ZIP_LISTS _names _lines)
+      set(_bad FALSE)
+      if(EXISTS ${_here}/${_name})
+        get_filename_component(_abs ${_here}/${_name} ABSOLUTE)
+        string(FIND "${_abs}/" "${GPILOT_TOOLS_DIR}/" _under)
+        if(_under EQUAL 0)
+          set(_bad TRUE)
+        endif()
+      else()
+        gpilot_found_in(${_name} "${_own_search}" _own)
+        if(NOT _own)
+          gpilot_found_in(${_name} "${_tools_search}" _bad)
+        endif()
+      endif()
+      if(_bad)
+        message(FATAL_ERROR "${_file} includes a tool's header: ${_line}; tools use services, never the other way "
+                            "(what both need goes in services/ or common/)")
+      endif()
+    endforeach()
+  endforeach()
+  gpilot_all_targets(${CMAKE_SOURCE_DIR} _targets)
+  foreach(_t IN LISTS _targets)
+    get_target_property(_dir ${_t} SOURCE_DIR)
+    string(FIND "${_dir}/" "${GPILOT_SERVICES_DIR}/" _in_services)
+    if(NOT _in_services EQUAL 0)
+      continue()
+    endif()
+    gpilot_link_closure(${_t} _closure)
+    foreach(_l IN LISTS _closure)
+      if(TARGET ${_l})
+        get_target_property(_imported ${_l} IMPORTED)
+        if(_imported)
+          continue()
+        endif()
+        get_target_property(_ldir ${_l} SOURCE_DIR)
+        string(FIND "${_ldir}/" "${GPILOT_TOOLS_DIR}/" _in_tools)
+        if(_in_tools EQUAL 0)
+          message(FATAL_ERROR "${_t} (services/) links ${_l} (tools/): tools use services, never the other way "
+                              "(what both need goes in services/ or common/)")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endfunction()
+
+# Every target defined in `dir` and the folders below it.
+function(gpilot_all_targets dir out)
+  get_property(_targets DIRECTORY ${dir} PROPERTY BUILDSYSTEM_TARGETS)
+  get_property(_subdirs DIRECTORY ${dir} PROPERTY SUBDIRECTORIES)
+  foreach(_sub IN LISTS _subdirs)
+    gpilot_all_targets(${_sub} _more)
+    list(APPEND _targets ${_more})
+  endforeach()
+  set(${out} ${_targets} PARENT_SCOPE)
 endfunction()

@@ -181,11 +181,17 @@ void BusNode::subscribe_raw(const std::string& channel, RawHandler fn, int queue
 }
 
 void BusNode::on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub) {
-  try {
-    sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime);
-  } catch (const std::exception& e) {  // never through LCM's C dispatch
-    sub->node->stats_.rejected(channel + ": the handler failed on this message: " + e.what());
-  }
+  sub->node->run_handler(channel, [&] { sub->fn(channel, rbuf->data, rbuf->data_size, rbuf->recv_utime); });
+}
+
+void BusNode::handler_failed(const std::string& channel, const std::string& what) {
+  const int64_t n = stats_.failed(channel + ": " + what);
+  // Every failure counts in HEALTH; the log gets the 1st, 2nd, 4th, 8th ... so that a defect hit on every
+  // frame does not flood it.
+  if ((n & (n - 1)) == 0)
+    log_error("the handler of %s failed (%lld so far): %s; a defect of this process, not a bad message: HEALTH "
+              "says ERROR until it restarts",
+              channel.c_str(), static_cast<long long>(n), what.c_str());
 }
 
 int BusNode::drain() {
@@ -214,7 +220,7 @@ int BusNode::handle_for(int timeout_ms) {
 
 void BusNode::every(double period_s, std::function<void()> fn) {
   const int64_t period = std::max<int64_t>(1, seconds_to_utime(period_s));
-  timers_.push_back(Timer{period, monotonic_utime() + period, std::move(fn)});
+  timers_.push_back(Timer{period, timer_clock_() + period, std::move(fn)});
 }
 
 void BusNode::run_timers_at(int64_t utime) {
@@ -232,7 +238,7 @@ void BusNode::publish_health() {
 
 void BusNode::run_due_timers() {
   if (log_time_ >= 0) return;  // replay: fired by run_timers_at at the live instants
-  const int64_t now = monotonic_utime();
+  const int64_t now = timer_clock_();
   for (auto& t : timers_) {
     if (now < t.next_us) continue;
     t.fn();
@@ -244,7 +250,7 @@ void BusNode::run_due_timers() {
 bool BusNode::spin_once(int timeout_ms) {
   if (stopping()) return false;
   int wait_ms = timeout_ms;
-  const int64_t now = monotonic_utime();
+  const int64_t now = timer_clock_();
   for (const auto& t : timers_)
     wait_ms = std::min<int>(wait_ms, static_cast<int>(std::max<int64_t>(0, (t.next_us - now + 999) / 1000)));
   if (handle_for(wait_ms) < 0) {

@@ -4,8 +4,10 @@
 // A handler sees only messages that decoded exactly (LCM 1.3.1's generated decoders throw on a negative or
 // zero length: caught; a datagram with bytes after the message is not this message) and passed
 // check_message(); anything else is counted in HEALTH (rejected, last_reject_reason) and never reaches the
-// stage. A handler that throws does not unwind through LCM's C dispatch: the message is rejected with the
-// reason and the process keeps running.
+// stage. A handler's throw never unwinds through LCM's C dispatch, and the process keeps running: an
+// InputError (input_error.hpp: the message is unusable) is a counted rejection like bytes that do not decode;
+// anything else (std::logic_error, cv::Exception, std::bad_alloc, ...) is a defect of the process, not of
+// the message: logged at error level, and HEALTH says ERROR from then on (StageStats::failed).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +25,7 @@
 #include "bus_params.hpp"
 #include "bus_signature.hpp"
 #include "clock.hpp"
+#include "input_error.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "message_checks.hpp"
 #include "stream_guard.hpp"
@@ -158,10 +161,16 @@ class BusNode {
   // Dispatches every message already queued (memq:// replay); returns how many were handled.
   int drain();
 
-  // Runs fn every period_s seconds from the loop, on the monotonic clock. In replay (the node on the log's
-  // clock, set_log_time) timers never fire by themselves: the replay fires them with run_timers_at at the
-  // instants the live process's did (a timer's output is stamped with now(), so the log says when).
+  // Runs fn every period_s seconds from the loop, on the timer clock (the monotonic clock unless a test set
+  // its own). In replay (the node on the log's clock, set_log_time) timers never fire by themselves: the
+  // replay fires them with run_timers_at at the instants the live process's did (a timer's output is stamped
+  // with now(), so the log says when).
   void every(double period_s, std::function<void()> fn);
+  // The clock the loop's timers run on (µs, never jumping back): monotonic_utime unless replaced. A test
+  // moves its own clock by hand and calls spin_once(0): the timers fire by that clock, not by how long the
+  // test happened to take. Set it before the first every().
+  using TimerClock = std::function<int64_t()>;
+  void set_timer_clock(TimerClock clock) { timer_clock_ = std::move(clock); }
   // Replay: the live process's timers fired at utime. Sets the clock to utime and runs every timer once (a
   // replayed stage has one: gpilot-flight's setpoint tick, its other timers belong to backends not replayed).
   void run_timers_at(int64_t utime);
@@ -215,6 +224,10 @@ class BusNode {
     RawHandler fn;
   };
   static void on_any(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawSubscription* sub);
+  // Runs a handler: an InputError rejects the message, any other throw is the process's failure (logged).
+  template <class Fn>
+  void run_handler(const std::string& channel, Fn&& handler);
+  void handler_failed(const std::string& channel, const std::string& what);
 
   template <class Msg>
   static void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, TypedSubscription<Msg>* sub);
@@ -272,6 +285,7 @@ class BusNode {
   StageStats stats_;
   std::vector<std::unique_ptr<SubscriptionBase>> subs_;
   std::vector<Timer> timers_;
+  TimerClock timer_clock_ = monotonic_utime;
   bool stop_requested_ = false;
 };
 
@@ -313,13 +327,22 @@ void BusNode::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   const int64_t t0 = monotonic_utime();
   const bool outer = !nested;
   if (outer) sub->in_use = true;
-  try {
-    sub->handler(msg, arrival);
-  } catch (const std::exception& e) {
-    node.stats_.rejected(channel + ": the handler failed on this message: " + e.what());
-  }
+  node.run_handler(channel, [&] { sub->handler(msg, arrival); });
   if (outer) sub->in_use = false;
   node.stats_.processing_time(monotonic_utime() - t0);
+}
+
+template <class Fn>
+void BusNode::run_handler(const std::string& channel, Fn&& handler) {
+  try {
+    handler();
+  } catch (const InputError& e) {
+    stats_.rejected(channel + ": " + e.what());
+  } catch (const std::exception& e) {
+    handler_failed(channel, e.what());
+  } catch (...) {
+    handler_failed(channel, "an exception that is not a std::exception");
+  }
 }
 
 }  // namespace gpilot

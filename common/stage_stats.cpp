@@ -21,14 +21,24 @@ double quantile(std::vector<int64_t>& values, double p) {
   return static_cast<double>(values[k]);
 }
 
+int8_t StageStats::state() const {
+  return failures_ > 0 && state_ != health_t::STATE_STOPPING ? health_t::STATE_ERROR : state_;
+}
+
+std::string StageStats::state_detail() const {
+  if (failures_ == 0) return detail_;
+  return std::to_string(failures_) + (failures_ == 1 ? " failure" : " failures") + " of this process, the last: " +
+         last_failure_ + (detail_.empty() ? "" : "; " + detail_);
+}
+
 health_t StageStats::report(int64_t now_utime, const std::string& name, int32_t pid) {
   health_t h;
   h.utime = now_utime;
   h.seq = seq_++;
   h.name = name;
   h.pid = pid;
-  h.state = state_;
-  h.state_detail = detail_;
+  h.state = state();
+  h.state_detail = state_detail();
   h.messages_in = in_;
   h.messages_out = out_;
   h.rejected = rejected_;

@@ -21,6 +21,10 @@
 namespace gpilot {
 namespace {
 
+// A paced source this many frame periods behind its ticks (a stall: a slow disk, a stopped process) restarts
+// its ticks from now instead of publishing the missed frames in a burst to catch up.
+constexpr int64_t kStallPeriods = 10;
+
 ground_truth_t to_message(const SyntheticTruth& t, int64_t utime, int64_t seq) {
   ground_truth_t m{};
   m.utime = utime;
@@ -59,6 +63,101 @@ struct Produced {
   std::optional<SyntheticTruth> truth;
 };
 
+// The opened source: the one object of its kind, and a producer of frame `seq` (stamped on the node's clock).
+struct OpenSource {
+  std::unique_ptr<SyntheticWorld> world;
+  std::unique_ptr<FrameSource> file;
+  std::unique_ptr<CameraSource> camera;
+  std::function<ReadStatus(int64_t, Produced&, std::string&)> produce;
+  double fps = 0.0;
+  std::string opened;  // what was opened, for the log and HEALTH
+};
+
+// Opens the source o names; throws when it cannot (a camera that is not there yet is not an error: the loop
+// reports it lost and retries). The synthetic camera flies with `vehicle`, the latest VEHICLE_STATE.
+OpenSource open_source(const CaptureParams& p, int8_t format, const CaptureOptions& o, BusNode& node,
+                       const std::optional<CameraPose>& vehicle) {
+  OpenSource src;
+  switch (o.kind) {
+    case CaptureOptions::Kind::Synthetic: {
+      src.world = std::make_unique<SyntheticWorld>(p.synthetic, Scenario::load(o.source), o.seed);
+      const SyntheticWorld* world = src.world.get();
+      const double fps = src.fps = p.synthetic.fps;
+      char what[512];
+      std::snprintf(what, sizeof what, "synthetic scenario '%s' (%s, %g s @ %g fps)", world->scenario().name().c_str(),
+                    world->scenario().origin().c_str(), world->scenario().duration_s(), fps);
+      src.opened = what;
+      src.produce = [world, fps, &vehicle, &node](int64_t seq, Produced& out, std::string& why) {
+        const double t = static_cast<double>(seq) / fps;  // scenario time of this frame
+        if (t >= world->scenario().duration_s()) {
+          why = "end of scenario '" + world->scenario().name() + "' after " + std::to_string(seq) + " frames";
+          return ReadStatus::End;
+        }
+        SyntheticFrame f = world->render(t, seq, vehicle);
+        out.utime = node.now();
+        out.bgr = std::move(f.bgr);
+        out.truth = f.truth;
+        return ReadStatus::Frame;
+      };
+      break;
+    }
+    case CaptureOptions::Kind::Video:
+    case CaptureOptions::Kind::Images: {
+      if (o.kind == CaptureOptions::Kind::Video)
+        src.file = std::make_unique<VideoFileSource>(o.source, o.loop,
+                                                     format == image_t::PIXEL_FORMAT_JPEG && p.jpeg_passthrough);
+      else
+        src.file = std::make_unique<ImageFolderSource>(o.source, p.fps, o.loop);
+      FrameSource* file = src.file.get();
+      src.fps = file->fps();
+      src.opened = file->describe();
+      src.produce = [file, &node](int64_t, Produced& out, std::string& why) {
+        const ReadStatus s = file->read(out.bgr, why);
+        out.jpeg = file->gives_jpeg();
+        // Stamped when read, on the bus clock like a camera's: the file's own time (media_time_s) is not a
+        // time on the bus, and downstream stages judge freshness and latency by utime.
+        out.utime = node.now();
+        return s;
+      };
+      break;
+    }
+    case CaptureOptions::Kind::Camera: {
+      src.camera = std::make_unique<CameraSource>(o.camera_index, p.width, p.height, p.fps);
+      CameraSource* camera = src.camera.get();
+      std::string why;
+      src.opened = camera->open(why) ? camera->describe() : why;
+      src.fps = camera->fps();
+      src.produce = [camera, &node](int64_t, Produced& out, std::string& why) {
+        const ReadStatus s = camera->read(out.bgr, why);
+        out.utime = node.now();
+        return s;
+      };
+      break;
+    }
+  }
+  return src;
+}
+
+// Publishes frame f as CAMERA seq (and its GROUND_TRUTH); false (counted in HEALTH, nothing published) when
+// the source's own JPEG is not one the stages could decode.
+bool publish_frame(BusNode& node, const Produced& f, int64_t seq, int8_t format, const CaptureParams& p,
+                   JpegChroma chroma) {
+  image_t img;
+  if (f.jpeg) {
+    const std::string bad = jpeg_to_image(f.bgr.data, f.bgr.total(), f.utime, seq, img);
+    if (!bad.empty()) {  // a damaged frame of the file: counted, not published
+      log_warn("frame %lld of the source is not a JPEG the stages could decode: %s", static_cast<long long>(seq), bad.c_str());
+      node.reject(bad);
+      return false;
+    }
+  } else {
+    img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality, chroma);
+  }
+  publish(node, capture_channels::kCamera, img);
+  if (f.truth) publish(node, capture_channels::kGroundTruth, to_message(*f.truth, f.utime, seq));
+  return true;
+}
+
 }  // namespace
 
 int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
@@ -75,69 +174,9 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
   });
   node.every(1.0, [&node] { node.publish_health(); });
 
-  // Open the source; one producer per kind.
-  std::unique_ptr<SyntheticWorld> world;
-  std::unique_ptr<FrameSource> file;
-  std::unique_ptr<CameraSource> camera;
-  std::function<ReadStatus(int64_t, Produced&, std::string&)> produce;
-  double fps = 0.0;
-  std::string opened;
+  OpenSource src;
   try {
-    switch (o.kind) {
-      case CaptureOptions::Kind::Synthetic: {
-        world = std::make_unique<SyntheticWorld>(p.synthetic, Scenario::load(o.source), o.seed);
-        fps = p.synthetic.fps;
-        char what[512];
-        std::snprintf(what, sizeof what, "synthetic scenario '%s' (%s, %g s @ %g fps)", world->scenario().name().c_str(),
-                      world->scenario().origin().c_str(), world->scenario().duration_s(), fps);
-        opened = what;
-        produce = [&](int64_t seq, Produced& out, std::string& why) {
-          const double t = static_cast<double>(seq) / fps;  // scenario time of this frame
-          if (t >= world->scenario().duration_s()) {
-            why = "end of scenario '" + world->scenario().name() + "' after " + std::to_string(seq) + " frames";
-            return ReadStatus::End;
-          }
-          SyntheticFrame f = world->render(t, seq, vehicle);
-          out.utime = node.now();
-          out.bgr = std::move(f.bgr);
-          out.truth = f.truth;
-          return ReadStatus::Frame;
-        };
-        break;
-      }
-      case CaptureOptions::Kind::Video:
-      case CaptureOptions::Kind::Images: {
-        if (o.kind == CaptureOptions::Kind::Video)
-          file = std::make_unique<VideoFileSource>(o.source, o.loop,
-                                                   format == image_t::PIXEL_FORMAT_JPEG && p.jpeg_passthrough);
-        else
-          file = std::make_unique<ImageFolderSource>(o.source, p.fps, o.loop);
-        fps = file->fps();
-        opened = file->describe();
-        produce = [&](int64_t, Produced& out, std::string& why) {
-          const ReadStatus s = file->read(out.bgr, why);
-          out.jpeg = file->gives_jpeg();
-          // Stamped when read, on the bus clock like a camera's: the file's own time (media_time_s) is not a
-          // time on the bus, and downstream stages judge freshness and latency by utime.
-          out.utime = node.now();
-          return s;
-        };
-        break;
-      }
-      case CaptureOptions::Kind::Camera: {
-        // A camera that is not there yet is not an error: the loop reports it lost and retries.
-        camera = std::make_unique<CameraSource>(o.camera_index, p.width, p.height, p.fps);
-        std::string why;
-        opened = camera->open(why) ? camera->describe() : why;
-        fps = camera->fps();
-        produce = [&](int64_t, Produced& out, std::string& why) {
-          const ReadStatus s = camera->read(out.bgr, why);
-          out.utime = node.now();
-          return s;
-        };
-        break;
-      }
-    }
+    src = open_source(p, format, o, node, vehicle);
   } catch (const std::exception& e) {
     // A source that cannot open: said on stderr and in HEALTH, exit status 1.
     log_error("%s", e.what());
@@ -145,11 +184,14 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     node.publish_health();
     return 1;
   }
+  const CameraSource* camera = src.camera.get();
+  std::string& opened = src.opened;
   if (!camera || camera->is_open())
-    log_info("publishing CAMERA%s from %s", world ? " and GROUND_TRUTH" : "", opened.c_str());
+    log_info("publishing CAMERA%s from %s", src.world ? " and GROUND_TRUTH" : "", opened.c_str());
   node.set_state(health_t::STATE_OK, opened);
   node.publish_health();
 
+  const double fps = src.fps;
   const int64_t max_frames = o.duration_s > 0 ? static_cast<int64_t>(std::ceil(o.duration_s * fps - 1e-9)) : -1;
   const int64_t period = std::max<int64_t>(1, seconds_to_utime(1.0 / fps));
   int64_t next_tick = monotonic_utime();
@@ -175,23 +217,11 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     if (max_frames >= 0 && seq >= max_frames) return finish("--duration reached after " + std::to_string(seq) + " frames");
     Produced f;
     std::string why;
-    switch (produce(seq, f, why)) {
+    switch (src.produce(seq, f, why)) {
       case ReadStatus::Frame: {
         f.utime = std::max(f.utime, last_utime + 1);  // each frame its own time, even read within a microsecond
         last_utime = f.utime;
-        image_t img;
-        if (f.jpeg) {
-          const std::string bad = jpeg_to_image(f.bgr.data, f.bgr.total(), f.utime, seq, img);
-          if (!bad.empty()) {  // a damaged frame of the file: counted, not published
-            log_warn("frame %lld of the source is not a JPEG the stages could decode: %s", static_cast<long long>(seq), bad.c_str());
-            node.reject(bad);
-            break;
-          }
-        } else {
-          img = mat_to_image(f.bgr, f.utime, seq, format, p.jpeg_quality, chroma);
-        }
-        publish(node, capture_channels::kCamera, img);
-        if (f.truth) publish(node, capture_channels::kGroundTruth, to_message(*f.truth, f.utime, seq));
+        if (!publish_frame(node, f, seq, format, p, chroma)) break;
         ++seq;
         if (degraded) {
           degraded = false;
@@ -216,7 +246,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
         node.set_state(health_t::STATE_DEGRADED, detail);
         serve_until(monotonic_utime() + seconds_to_utime(p.camera_retry_s));
         std::string reopen_why;
-        if (camera && camera->open(reopen_why)) log_info("camera reopened: %s", camera->describe().c_str());
+        if (src.camera && src.camera->open(reopen_why)) log_info("camera reopened: %s", src.camera->describe().c_str());
         next_tick = monotonic_utime();
         continue;
       }
@@ -228,7 +258,7 @@ int run_capture(const Config& config, const CaptureOptions& o, BusNode& node) {
     } else {
       next_tick += period;
       const int64_t now = monotonic_utime();
-      if (now - next_tick > 10 * period) next_tick = now;  // far behind (a stall): no burst to catch up
+      if (now - next_tick > kStallPeriods * period) next_tick = now;  // far behind (a stall): no burst to catch up
       serve_until(next_tick);
     }
   }

@@ -10,6 +10,22 @@
 
 namespace gpilot {
 
+namespace {
+
+// A user box whose part in the image is narrower or shorter than this many pixels holds no hand to find: its
+// hand square (box width / 4) would be under a pixel.
+constexpr int kMinBoxSidePx = 4;
+
+// A forearm hanging at rest beside the body has its middle in the outer half of its side of the box: at least
+// this many box widths from p_uc.x (each side is half a box wide).
+constexpr double kOuterHalfOfSideRatio = 0.25;
+
+// A colour is the torso's clothing when at least 1 in this many of the torso's pixels have it (0.5 %): rarer
+// colours there are its edges, shadows and what shows through, which an arm must not be joined by.
+constexpr int64_t kClothingColourOneIn = 200;
+
+}  // namespace
+
 const char* hand_kind_name(HandKind k) {
   switch (k) {
     case HandKind::Out: return "OUT";
@@ -50,7 +66,7 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   g.legs_rows_begin = row(y + h - p.legs_remove_ratio * h);
   g.image = image;
   g.body_centre_in_view = square_in_view(g.body_centre, g.hand_side, image);
-  g.valid = g.box.width >= 4 && g.box.height >= 4;
+  g.valid = g.box.width >= kMinBoxSidePx && g.box.height >= kMinBoxSidePx;
   return g;
 }
 
@@ -69,7 +85,26 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     r.geometry = g;
     return r;
   }
-  (skin ? *skin : skin_).classify(bgr(g.roi), mask_);
+  const cv::Mat& arm_skin = make_skin_mask(bgr, skin ? *skin : skin_, g);
+  // One labelling of the skin components serves both shape rules (the blobs dropped are gone whole, so the
+  // components left keep their labels and stats).
+  const bool keep_unopened = &arm_skin == &unopened_;
+  const bool hanging_rule = params_.out_not_beside_hanging_forearm && params_.front_max_upright > 0;
+  const int components = params_.max_blob_hand_areas > 0 || hanging_rule
+                             ? cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S)
+                             : 0;
+  const int dropped = drop_large_blobs(mask_, g, components, keep_unopened ? &unopened_ : nullptr);
+  find_hanging_forearms(g, hanging_rule ? components : 0);
+  HandResult res = run(mask_, g.roi.tl(), g);
+  const int armless = out_on_an_arm(bgr, arm_skin, g, res);
+  front_not_a_forearm(g, res);
+  res.blobs_dropped = dropped;
+  res.armless_dropped = armless;
+  return res;
+}
+
+const cv::Mat& HandDetector::make_skin_mask(const cv::Mat& bgr, const SkinClassifier& skin, const HandGeometry& g) {
+  skin.classify(bgr(g.roi), mask_);
   // The arm test (on_an_arm) reads the skin before the opening: a far user's arm is 2-3 px thick, and the
   // opening that clears speckles from the hand candidates cut it from the hand on some frames and not others
   // (an OUT lost for 3 s at 9.8 m).
@@ -79,7 +114,6 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     const int side = 2 * g.open_radius + 1;
     cv::morphologyEx(mask_, mask_, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {side, side}));
   }
-  cv::Mat& arm_skin = keep_unopened ? unopened_ : mask_;
   // Face/neck and legs/feet: rows of the user box (box columns only) cleared by the preset ratios.
   const cv::Rect top(g.box.x, g.box.y, g.box.width, std::max(0, g.face_rows_end - g.box.y));
   const cv::Rect bottom(g.box.x, g.legs_rows_begin, g.box.width, std::max(0, g.box.br().y - g.legs_rows_begin));
@@ -88,15 +122,10 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
       mask_(r - g.roi.tl()).setTo(0);
       if (keep_unopened) unopened_(r - g.roi.tl()).setTo(0);
     }
-  // One labelling of the skin components serves both shape rules (the blobs dropped are gone whole, so the
-  // components left keep their labels and stats).
-  const bool hanging_rule = params_.out_not_beside_hanging_forearm && params_.front_max_upright > 0;
-  const int components = params_.max_blob_hand_areas > 0 || hanging_rule
-                             ? cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S)
-                             : 0;
-  const int dropped = drop_large_blobs(mask_, g, components, keep_unopened ? &unopened_ : nullptr);
-  find_hanging_forearms(g, hanging_rule ? components : 0);
-  HandResult res = run(mask_, g.roi.tl(), g);
+  return keep_unopened ? unopened_ : mask_;
+}
+
+int HandDetector::out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& g, HandResult& res) {
   // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
   // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
   int armless = 0;
@@ -114,6 +143,10 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     }
     res = run(mask_, g.roi.tl(), g);
   }
+  return armless;
+}
+
+void HandDetector::front_not_a_forearm(const HandGeometry& g, HandResult& res) {
   // A FRONT hand is in front of the body, not a forearm hanging at the torso's edge: a skin component much
   // taller than wide that reaches below the body centre is dropped, and Alg. 2 looks again (three times).
   for (int tries = 0; res.kind == HandKind::Front && (params_.front_max_upright > 0 || params_.front_max_hand_areas > 0);
@@ -127,20 +160,19 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
     const bool torso_sized = params_.front_max_hand_areas > 0 &&
                              area > params_.front_max_hand_areas * static_cast<double>(g.hand_side) * g.hand_side;
     if (!hanging && !torso_sized) break;
-    ++res.upright_dropped;
+    const int upright = res.upright_dropped + 1;
     if (tries + 1 >= kMaxDroppedCandidates) {
+      // Given up: no hand this frame (HAND_OBS's skin counts zero, as for any NONE the rules make), but the
+      // result still says how many candidates were dropped.
       res = HandResult{};
       res.geometry = g;
+      res.upright_dropped = upright;
       break;
     }
-    const int upright = res.upright_dropped;
     erase_component(g, res.hand);
     res = run(mask_, g.roi.tl(), g);
     res.upright_dropped = upright;
   }
-  res.blobs_dropped = dropped;
-  res.armless_dropped = armless;
-  return res;
 }
 
 void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
@@ -149,7 +181,7 @@ void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
   // middle inside the box in the outer half of its side, reaching below the body centre. That side's arm is down:
   // no hand of it is stretched out (a skin-coloured wall at the frame's bottom beside a resting user was an OUT
   // hand, joined to the torso through the resting forearm: a false DOWN in the closed-loop nuisances runs).
-  const double quarter = 0.25 * g.width;
+  const double outer_half = kOuterHalfOfSideRatio * g.width;
   for (int i = 1; i < n; ++i) {
     if (blob_dropped_[static_cast<size_t>(i)]) continue;
     const int* st = stats_.ptr<int>(i);
@@ -157,7 +189,7 @@ void HandDetector::find_hanging_forearms(const HandGeometry& g, int n) {
     const int w = st[cv::CC_STAT_WIDTH], h = st[cv::CC_STAT_HEIGHT];
     const double cx = x + w / 2.0;
     if (h <= params_.front_max_upright * w || y + h <= g.body_centre.y) continue;
-    if (cx < g.box.x || cx >= g.box.br().x || std::abs(cx - g.shoulder_centre.x) < quarter) continue;
+    if (cx < g.box.x || cx >= g.box.br().x || std::abs(cx - g.shoulder_centre.x) < outer_half) continue;
     hanging_[cx < g.shoulder_centre.x ? 0 : 1] = true;
   }
 }
@@ -197,7 +229,7 @@ bool HandDetector::on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const Hand
   // they join no other hand to it either.
   const cv::Mat roi = bgr(g.roi);
   arm_.create(roi.size(), CV_8UC1);
-  const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / 200);
+  const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / kClothingColourOneIn);
   for (int y = 0; y < roi.rows; ++y) {
     const uint8_t* p = roi.ptr<uint8_t>(y);
     const uint8_t* m = skin.ptr<uint8_t>(y);

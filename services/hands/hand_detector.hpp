@@ -96,6 +96,17 @@ class HandDetector {
 
  private:
   HandResult run(const cv::Mat& mask01, cv::Point origin, const HandGeometry& geometry);
+  // detect()'s steps. The skin of the search rectangle into mask_ (opened, face and legs rows cleared); returns
+  // the skin the arm test reads: unopened_ (the same rows cleared) when the arm rule and the opening are on,
+  // else mask_ itself.
+  const cv::Mat& make_skin_mask(const cv::Mat& bgr, const SkinClassifier& skin, const HandGeometry& geometry);
+  // Alg. 1's result kept only for a hand joined to the torso by an arm (arm_connected): each armless candidate
+  // is erased and Alg. 1 runs again, after kMaxDroppedCandidates the skin outside the box goes. Returns how
+  // many were dropped.
+  int out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& geometry, HandResult& res);
+  // Alg. 2's result dropped while it is a hanging forearm or torso-sized, and Alg. 2 run again; after
+  // kMaxDroppedCandidates no hand (res.upright_dropped counts them either way).
+  void front_not_a_forearm(const HandGeometry& geometry, HandResult& res);
   // Clears skin components too large to be a hand from mask01 (labelled in labels_: n labels, 0 background),
   // and the same pixels from `also` if given; marks them in blob_dropped_.
   int drop_large_blobs(cv::Mat& mask01, const HandGeometry& geometry, int n, cv::Mat* also = nullptr);

@@ -17,7 +17,6 @@
 #include "hands/seq_pairer.hpp"
 #include "image_codec.hpp"
 #include "seq_gaps.hpp"
-#include "tracker/tracker_params.hpp"
 
 namespace gpilot {
 
@@ -159,9 +158,9 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, s
     publish(node, hands_channels::kHandObs, obs);
     node.set_state(health_t::STATE_OK, method.description());
   };
-  // A short CAMERA queue, as the tracker's (tracker.camera_queue): LCM drops the frames that arrive while it is
-  // full; a skipped frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the
-  // frames this stage published a HAND_OBS of.
+  // A short CAMERA queue (hands.camera_queue): LCM drops the frames that arrive while it is full; a skipped
+  // frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the frames this stage
+  // published a HAND_OBS of.
   auto& gaps = state->gaps;
   subscribe_taking(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer, &spare_buffers, &spare_pixels, limits](image_t& m, int64_t) {
     for (int64_t n = gaps.skipped_before(m.seq); n > 0; --n) node.drop();
@@ -177,7 +176,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, s
     arrived.undecodable = decode_for_hands(arrived.frame, limits, arrived.bgr);
     const int64_t seq = arrived.frame.seq;
     handle(pairer.add_frame(seq, std::move(arrived)));
-  }, config.section<TrackerParams>("tracker").camera_queue);
+  }, params.camera_queue);
   subscribe(node, hands_channels::kUserTrack, [handle, &pairer](const user_track_t& m, int64_t) { handle(pairer.add_track(m.seq, m)); });
   node.set_state(health_t::STATE_DEGRADED, "waiting for CAMERA and USER_TRACK");
   return state;

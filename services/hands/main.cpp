@@ -9,6 +9,7 @@
 #include "hands/hands_core_factory.hpp"
 #include "hands/hands_service.hpp"
 #include "service_cli.hpp"
+#include "system/opencv_threads.hpp"
 
 using namespace gpilot;
 
@@ -20,7 +21,10 @@ int main(int argc, char** argv) {
                  "out (vector from the shoulder centre) or a hand in front of the body (vector from the body centre).\n"
                  "Parameters: section `hands` of the config.");
   std::unique_ptr<HandMethod> method;
-  cli.before_bus([&](const Config& config) { method = make_hand_method(config.section<HandsParams>("hands")); });
+  cli.before_bus([&](const Config& config) {
+    set_opencv_threads(opencv_threads_of(config, "hands"));
+    method = make_hand_method(config.section<HandsParams>("hands"));
+  });
   return cli.run_node(argc, argv, [&](const Config& config, BusNode& node) {
     const auto stage = start_hands_service(config, node, std::move(method));
     node.run();

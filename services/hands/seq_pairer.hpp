@@ -34,7 +34,7 @@ class SeqPairer {
   template <class Mine, class Other, class Make>
   std::optional<std::pair<Frame, Track>> add(int64_t seq, Mine item, std::map<int64_t, Mine>& mine,
                                              std::map<int64_t, Other>& other, int64_t& my_drops, Make make) {
-    if (seq < newest_ - 10 * window_) restart();  // the source started again from a low seq
+    if (seq < newest_ - kRestartWindows * window_) restart();  // the source started again from a low seq
     if (seq > newest_) newest_ = seq;
     std::optional<std::pair<Frame, Track>> out;
     const auto it = other.find(seq);
@@ -72,6 +72,9 @@ class SeqPairer {
     }
   }
 
+  // A seq more than this many windows below the newest is no late partner (those wait one window): the source
+  // started again from a low seq (a restarted capture), and the pairer starts over with it.
+  static constexpr int64_t kRestartWindows = 10;
   int64_t window_;
   int64_t newest_ = INT64_MIN / 2;
   std::map<int64_t, Frame> frames_;

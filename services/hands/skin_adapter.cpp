@@ -107,9 +107,8 @@ void SkinAdapter::learn_clothing(const cv::Mat& bgr, const cv::Rect& torso) {
   dirty_ = true;
 }
 
-const SkinClassifier& SkinAdapter::classifier() {
+const SkinClassifier& SkinAdapter::classifier_for_frame() {
   ++frames_since_rebuild_;
-  // The first state of a track is used at once; later ones every rebuild_frames frames (the smoothing is the cost).
   if (dirty_ && (!built_ || frames_since_rebuild_ >= p_.adapt.rebuild_frames)) rebuild();
   return adapted_;
 }

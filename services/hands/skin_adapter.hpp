@@ -39,8 +39,12 @@ class SkinAdapter {
   // Forgets both (the trained table alone).
   void reset();
 
-  // The classifier for the state learnt so far (rebuilt only when it changed).
-  const SkinClassifier& classifier();
+  // The classifier a frame is judged with: counts the frame, and rebuilds the classifier from the state learnt
+  // so far when that changed (a track's first state at once, later ones every adapt.rebuild_frames frames: the
+  // smoothing is the cost). Once a frame.
+  const SkinClassifier& classifier_for_frame();
+  // The classifier as last built; reading it counts no frame and rebuilds nothing.
+  const SkinClassifier& classifier() const { return adapted_; }
 
   int64_t user_samples() const { return user_samples_; }
   int64_t scene_samples() const { return scene_samples_; }

@@ -55,7 +55,7 @@ HandResult SkinHandMethod::detect(const cv::Mat& bgr, const UserView& user) {
     adapter_.learn_scene(bgr, exclude);
     adapter_.learn_clothing(bgr, torso_rect(p, g));
   }
-  judged_with_ = &adapter_.classifier();
+  judged_with_ = &adapter_.classifier_for_frame();
   return detector_.detect(bgr, box, judged_with_, face_now);
 }
 

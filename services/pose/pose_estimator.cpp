@@ -78,9 +78,7 @@ PoseEstimator::PoseEstimator(const PoseParams& params, PoseModels models)
     : params_(params),
       detector_(params, std::move(models.detector)),
       landmark_(std::move(models.landmark)),
-      smoothing_(params.smoothing) {
-  cv::setNumThreads(params.threads);
-}
+      smoothing_(params.smoothing) {}
 
 void PoseEstimator::reset() {
   next_roi_.reset();

@@ -42,7 +42,7 @@ struct PoseResult {
 
 class PoseEstimator {
  public:
-  // Sets cv::dnn's thread count (process-wide, cv::setNumThreads) to params.threads.
+  // params.threads is not set here: OpenCV's thread count is the process's (services/system/opencv_threads.hpp).
   PoseEstimator(const PoseParams& params, PoseModels models);
 
   // The user's pose in bgr (CV_8UC3, not empty: else std::invalid_argument). user_box: the tracker's box of the

@@ -70,6 +70,167 @@ cv::Rect2d torso_below(const cv::Rect2d& face, const BodyFitParams& p) {
                     2 * p.torso_half_width_in_faces * fw, p.torso_height_in_faces * fh);
 }
 
+// What fit_body reads around a face (frame pixels unless said): the face's measures, the preset box and the
+// torso sample; the strips beside the box (outside the largest box the fit may give: a person that wide is not
+// background); and the region of the frame read, from the chin down to the largest fitted bottom, in a copy
+// where the face is at most fit_face_px wide (the cost does not grow with the face).
+struct FitRegion {
+  cv::Rect2d face;
+  double fw = 0, fh = 0, cx = 0, chin = 0;  //!< face width and height, its centre column, the chin's row
+  cv::Rect2d box, torso;                    //!< the preset's body box, the torso sample under the face
+  double bx = 0;                            //!< the box's centre column
+  double beside = 0, outer = 0, half = 0;   //!< a strip's width, half the widest fitted box, the two together
+  cv::Rect region;                          //!< the part of the frame read
+  cv::Mat img;                              //!< region, shrunk
+  double sx = 1, sy = 1;                    //!< img pixels per frame pixel
+  cv::Rect to_img(const cv::Rect2d& r) const {
+    return cv::Rect(cv::Rect2d((r.x - region.x) * sx, (r.y - region.y) * sy, r.width * sx, r.height * sy)) &
+           cv::Rect(0, 0, img.cols, img.rows);
+  }
+  cv::Rect2d left_strip(double y, double height) const { return cv::Rect2d(bx - half, y, beside, height); }
+  cv::Rect2d right_strip(double y, double height) const { return cv::Rect2d(bx + outer, y, beside, height); }
+};
+
+// The region fit_body reads; false when none of it is in the frame.
+bool read_region(const cv::Mat& frame, const cv::Rect2d& face, const cv::Rect2d& b, const BodyFitParams& p, FitRegion& r) {
+  r.face = face;
+  r.fw = face.width, r.fh = face.height;
+  r.cx = face.x + r.fw / 2, r.chin = face.y + r.fh, r.bx = b.x + b.width / 2;
+  r.box = b;
+  r.torso = torso_below(face, p);
+  r.beside = p.beside_width_in_faces * r.fw;
+  r.outer = std::max(1.0, p.fit_max) * b.width / 2;
+  r.half = r.outer + r.beside;
+  const double bottom = b.y + p.fit_max * b.height;
+  r.region = cv::Rect(cv::Rect2d(r.bx - r.half, face.y, 2 * r.half, bottom - face.y)) & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (r.region.width < 1 || r.region.height < 1) return false;
+  const double s = std::min(1.0, p.fit_face_px / r.fw);
+  if (s < 1.0)
+    cv::resize(frame(r.region), r.img,
+               cv::Size(std::max(1, static_cast<int>(std::lround(r.region.width * s))), std::max(1, static_cast<int>(std::lround(r.region.height * s)))),
+               0, 0, cv::INTER_LINEAR);  // not INTER_AREA: that reads every pixel (5 ms for a 240 px face)
+  else
+    r.img = frame(r.region);
+  r.sx = r.img.cols / static_cast<double>(r.region.width), r.sy = r.img.rows / static_cast<double>(r.region.height);
+  return true;
+}
+
+// Evidence: the torso sample's colours against the strips beside the box at the same height (f.separation, or
+// f.refused). False when there is nothing to fit to, or the face is refused: the preset stands.
+bool measure_separation(const FitRegion& r, const Histograms& hist, const BodyFitParams& p, BodyFit& f) {
+  std::vector<double> t, bg;
+  const double torso_px = hist.of({r.to_img(r.torso)}, t);
+  const double beside_px =
+      hist.of({r.to_img(r.left_strip(r.torso.y, r.torso.height)), r.to_img(r.right_strip(r.torso.y, r.torso.height))}, bg);
+  if (torso_px <= 0) {  // none of it in view (only possible with min_torso_in_frame 0: then no evidence, the preset)
+    if (p.min_torso_in_frame > 0) f.refused = FaceRefusal::kNoTorso;
+    return false;
+  }
+  if (beside_px <= 0) return false;  // a person filling the frame's width: nothing to compare with, nothing to fit to
+  double bc = 0;
+  for (size_t i = 0; i < t.size(); ++i) bc += std::sqrt(t[i] * bg[i]);
+  f.separation = 1.0 - bc;
+  if (p.min_separation > 0 && f.separation < p.min_separation) {
+    f.refused = FaceRefusal::kNoBodyColour;
+    return false;
+  }
+  return true;
+}
+
+// The centre band under the face, from the torso sample down to the box's bottom.
+cv::Rect2d centre_band(const FitRegion& r) { return cv::Rect2d(r.torso.x, r.torso.y, r.torso.width, r.box.br().y - r.torso.y); }
+
+// Per colour bin, 1 where P(person | colour) >= fit_person_p: the centre band (torso and legs, if the box is
+// right) and the face's middle (the skin of bare arms and hands) against the strips beside the box over the same
+// rows; a colour seen in neither is undecided (0.5). A skin-coloured wall is in the strips too, so it stays
+// background.
+std::vector<uint8_t> person_colours(const FitRegion& r, const Histograms& hist, const BodyFitParams& p) {
+  const cv::Rect band_i = r.to_img(centre_band(r));
+  const double k = p.skin_sample_in_faces;
+  const cv::Rect skin_i = r.to_img(cv::Rect2d(r.cx - k * r.fw / 2, r.face.y + r.fh / 2 - k * r.fh / 2, k * r.fw, k * r.fh));
+  std::vector<double> fg, back;
+  hist.of({band_i, skin_i}, fg);
+  hist.of({r.to_img(r.left_strip(r.chin, r.box.br().y - r.chin)), r.to_img(r.right_strip(r.chin, r.box.br().y - r.chin))}, back);
+  std::vector<uint8_t> person(static_cast<size_t>(hist.bins()));
+  for (size_t i = 0; i < person.size(); ++i) {
+    const double pp = fg[i] + back[i] > 0 ? fg[i] / (fg[i] + back[i]) : 0.5;
+    person[i] = pp >= p.fit_person_p ? 1 : 0;
+  }
+  return person;
+}
+
+// Width: from the face's column out, while the chest band's columns are the person's. A side that runs into
+// the frame's edge is not seen (the other side's half-width stands for it).
+void measure_width(const FitRegion& r, const Histograms& hist, const std::vector<uint8_t>& person, int frame_cols,
+                   const BodyFitParams& p, BodyFit& f) {
+  const cv::Rect torso_i = r.to_img(r.torso);
+  const auto column_is_person = [&](int x) {
+    int n = 0;
+    for (int y = torso_i.y; y < torso_i.br().y; ++y) n += person[static_cast<size_t>(hist.bin(x, y))] != 0;
+    return torso_i.height > 0 && n >= p.fit_column_fraction * torso_i.height;
+  };
+  const int c0 = std::clamp(static_cast<int>(std::floor((r.cx - r.region.x) * r.sx)), 0, r.img.cols - 1);
+  int left = c0, right = c0;
+  const bool centre = column_is_person(c0);  // else the chest band under the face is no silhouette to follow
+  while (centre && left > 0 && column_is_person(left - 1)) --left;
+  while (centre && right < r.img.cols - 1 && column_is_person(right + 1)) ++right;
+  const bool left_seen = centre && !(left == 0 && r.region.x == 0);
+  const bool right_seen = centre && !(right == r.img.cols - 1 && r.region.br().x == frame_cols);
+  const double left_x = r.region.x + left / r.sx, right_x = r.region.x + (right + 1) / r.sx;
+  // The box keeps a margin beside the arms at rest: a silhouette silhouette_width_in_box of the preset's width
+  // is the preset.
+  const double expected = p.silhouette_width_in_box * r.box.width;
+  f.width_seen = left_seen || right_seen;
+  if (left_seen && right_seen) {
+    f.width_ratio = (right_x - left_x) / expected;
+    f.shift = ((left_x + right_x) / 2 - r.cx) / r.fw;
+  } else if (left_seen) {
+    f.width_ratio = 2 * (r.cx - left_x) / expected;
+  } else if (right_seen) {
+    f.width_ratio = 2 * (right_x - r.cx) / expected;
+  }
+}
+
+// Bottom: down the centre band while its rows are the person's (gaps up to fit_gap_in_faces bridged). Rows
+// that run into the frame's bottom edge leave the height unseen (the preset's).
+void measure_height(const FitRegion& r, const Histograms& hist, const std::vector<uint8_t>& person, int frame_rows,
+                    const BodyFitParams& p, BodyFit& f) {
+  const cv::Rect torso_i = r.to_img(r.torso);
+  const cv::Rect band_i = r.to_img(centre_band(r));
+  const auto row_is_person = [&](int y) {
+    int n = 0;
+    for (int x = band_i.x; x < band_i.br().x; ++x) n += person[static_cast<size_t>(hist.bin(x, y))] != 0;
+    return band_i.width > 0 && n >= p.fit_row_fraction * band_i.width;
+  };
+  const int gap = static_cast<int>(std::floor(p.fit_gap_in_faces * r.fh * r.sy));
+  int last = -1;
+  for (int y = std::max(0, torso_i.y); y < r.img.rows && y - std::max(last, torso_i.y) <= gap + 1; ++y)
+    if (row_is_person(y)) last = y;
+  if (last >= 0) {
+    const bool to_edge = last == r.img.rows - 1 && r.region.br().y == frame_rows;
+    f.height_seen = !to_edge;
+    if (f.height_seen) f.height_ratio = (r.region.y + (last + 1) / r.sy - r.box.y) / r.box.height;
+  }
+}
+
+// The measured ratios applied to the preset only beyond fit_tolerance (the preset is right for most people),
+// within [fit_min, fit_max]; f.body and f.box become the fitted ones.
+void apply_fit(const cv::Rect2d& face, const BodyFitParams& p, BodyFit& f) {
+  const double fw = face.width;
+  const cv::Rect2d b = f.box;
+  const auto settle = [&](double r, double max) {
+    return std::abs(std::log(r)) <= std::log1p(p.fit_tolerance) ? 1.0 : std::clamp(r, p.fit_min, std::max(p.fit_min, max));
+  };
+  const double wr = f.width_seen ? settle(std::max(f.width_ratio, 1e-3), p.fit_max) : 1.0;
+  const double hr = f.height_seen ? settle(std::max(f.height_ratio, 1e-3), std::min(p.fit_max, p.fit_max_height)) : 1.0;
+  const double shift = std::abs(f.shift * fw) <= p.fit_tolerance * b.width ? 0.0
+                                                                           : std::clamp(f.shift, -p.max_shift_in_faces, p.max_shift_in_faces);
+  f.body.width_in_faces *= wr;
+  f.body.height_in_faces *= hr;
+  if (shift != 0.0) f.body.centre_in_faces = shift;
+  f.box = body_from_face(face, f.body);
+}
+
 }  // namespace
 
 BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProportions& preset, const BodyFitParams& p) {
@@ -87,8 +248,6 @@ BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProport
     f.refused = FaceRefusal::kOffFrame;
     return f;
   }
-  const double fw = face.width, fh = face.height;
-  const double cx = face.x + fw / 2, chin = face.y + fh, bx = b.x + b.width / 2;
   const cv::Rect2d torso = torso_below(face, p);
   if (area(torso & frame_rect) < p.min_torso_in_frame * area(torso)) {
     f.refused = FaceRefusal::kNoTorso;
@@ -97,125 +256,15 @@ BodyFit fit_body(const cv::Mat& frame, const cv::Rect2d& face, const BodyProport
   const bool fit = p.fit_min < 1.0 || p.fit_max > 1.0;
   if (p.min_separation <= 0 && !fit) return f;
 
-  // What is read: from the chin down to the largest fitted bottom, the largest fitted width and the strips
-  // beside the box, in a copy where the face is at most fit_face_px wide (the cost does not grow with the face).
-  // The strips beside are outside the largest box the fit may give (a person that wide is not background).
-  const double beside = p.beside_width_in_faces * fw;
-  const double outer = std::max(1.0, p.fit_max) * b.width / 2;
-  const double half = outer + beside;
-  const double bottom = b.y + p.fit_max * b.height;
-  const cv::Rect region = cv::Rect(cv::Rect2d(bx - half, face.y, 2 * half, bottom - face.y)) & cv::Rect(0, 0, frame.cols, frame.rows);
-  if (region.width < 1 || region.height < 1) return f;
-  const double s = std::min(1.0, p.fit_face_px / fw);
-  cv::Mat img;
-  if (s < 1.0)
-    cv::resize(frame(region), img,
-               cv::Size(std::max(1, static_cast<int>(std::lround(region.width * s))), std::max(1, static_cast<int>(std::lround(region.height * s)))),
-               0, 0, cv::INTER_LINEAR);  // not INTER_AREA: that reads every pixel (5 ms for a 240 px face)
-  else
-    img = frame(region);
-  const double sx = img.cols / static_cast<double>(region.width), sy = img.rows / static_cast<double>(region.height);
-  const auto to_img = [&](const cv::Rect2d& r) {
-    return cv::Rect(cv::Rect2d((r.x - region.x) * sx, (r.y - region.y) * sy, r.width * sx, r.height * sy)) &
-           cv::Rect(0, 0, img.cols, img.rows);
-  };
-  const Histograms hist(img, p.bins_per_channel);
-
-  // Evidence: the torso sample's colours against the strips beside the box at the same height.
-  const cv::Rect torso_i = to_img(torso);
-  const cv::Rect left_i = to_img(cv::Rect2d(bx - half, torso.y, beside, torso.height));
-  const cv::Rect right_i = to_img(cv::Rect2d(bx + outer, torso.y, beside, torso.height));
-  std::vector<double> t, bg;
-  const double torso_px = hist.of({torso_i}, t);
-  const double beside_px = hist.of({left_i, right_i}, bg);
-  if (torso_px <= 0) {  // none of it in view (only possible with min_torso_in_frame 0: then no evidence, the preset)
-    if (p.min_torso_in_frame > 0) f.refused = FaceRefusal::kNoTorso;
-    return f;
-  }
-  if (beside_px <= 0) return f;  // a person filling the frame's width: nothing to compare with, nothing to fit to
-  double bc = 0;
-  for (size_t i = 0; i < t.size(); ++i) bc += std::sqrt(t[i] * bg[i]);
-  f.separation = 1.0 - bc;
-  if (p.min_separation > 0 && f.separation < p.min_separation) {
-    f.refused = FaceRefusal::kNoBodyColour;
-    return f;
-  }
+  FitRegion r;
+  if (!read_region(frame, face, b, p, r)) return f;
+  const Histograms hist(r.img, p.bins_per_channel);
+  if (!measure_separation(r, hist, p, f)) return f;
   if (!fit || f.separation < p.fit_min_separation) return f;
-
-  // P(person | colour): the centre band under the face (torso and legs, if the box is right) and the face's
-  // middle (the skin of bare arms and hands) against the strips beside the box over the same rows; a colour
-  // seen in neither is undecided (0.5). A skin-coloured wall is in the strips too, so it stays background.
-  const cv::Rect2d band(torso.x, torso.y, torso.width, b.br().y - torso.y);
-  const cv::Rect band_i = to_img(band);
-  const double k = p.skin_sample_in_faces;
-  const cv::Rect skin_i = to_img(cv::Rect2d(cx - k * fw / 2, face.y + fh / 2 - k * fh / 2, k * fw, k * fh));
-  std::vector<double> fg, back;
-  hist.of({band_i, skin_i}, fg);
-  hist.of({to_img(cv::Rect2d(bx - half, chin, beside, b.br().y - chin)), to_img(cv::Rect2d(bx + outer, chin, beside, b.br().y - chin))}, back);
-  std::vector<uint8_t> person(static_cast<size_t>(hist.bins()));
-  for (size_t i = 0; i < person.size(); ++i) {
-    const double pp = fg[i] + back[i] > 0 ? fg[i] / (fg[i] + back[i]) : 0.5;
-    person[i] = pp >= p.fit_person_p ? 1 : 0;
-  }
-  const auto is_person = [&](int x, int y) { return person[static_cast<size_t>(hist.bin(x, y))] != 0; };
-
-  // Width: from the face's column out, while the chest band's columns are the person's. A side that runs into
-  // the frame's edge is not seen (the other side's half-width stands for it).
-  const auto column_is_person = [&](int x) {
-    int n = 0;
-    for (int y = torso_i.y; y < torso_i.br().y; ++y) n += is_person(x, y);
-    return torso_i.height > 0 && n >= p.fit_column_fraction * torso_i.height;
-  };
-  const int c0 = std::clamp(static_cast<int>(std::floor((cx - region.x) * sx)), 0, img.cols - 1);
-  int left = c0, right = c0;
-  const bool centre = column_is_person(c0);  // else the chest band under the face is no silhouette to follow
-  while (centre && left > 0 && column_is_person(left - 1)) --left;
-  while (centre && right < img.cols - 1 && column_is_person(right + 1)) ++right;
-  const bool left_seen = centre && !(left == 0 && region.x == 0);
-  const bool right_seen = centre && !(right == img.cols - 1 && region.br().x == frame.cols);
-  const double left_x = region.x + left / sx, right_x = region.x + (right + 1) / sx;
-  // The box keeps a margin beside the arms at rest: a silhouette silhouette_width_in_box of the preset's width
-  // is the preset.
-  const double expected = p.silhouette_width_in_box * b.width;
-  f.width_seen = left_seen || right_seen;
-  if (left_seen && right_seen) {
-    f.width_ratio = (right_x - left_x) / expected;
-    f.shift = ((left_x + right_x) / 2 - cx) / fw;
-  } else if (left_seen) {
-    f.width_ratio = 2 * (cx - left_x) / expected;
-  } else if (right_seen) {
-    f.width_ratio = 2 * (right_x - cx) / expected;
-  }
-
-  // Bottom: down the centre band while its rows are the person's (gaps up to fit_gap_in_faces bridged). Rows
-  // that run into the frame's bottom edge leave the height unseen (the preset's).
-  const auto row_is_person = [&](int y) {
-    int n = 0;
-    for (int x = band_i.x; x < band_i.br().x; ++x) n += is_person(x, y);
-    return band_i.width > 0 && n >= p.fit_row_fraction * band_i.width;
-  };
-  const int gap = static_cast<int>(std::floor(p.fit_gap_in_faces * fh * sy));
-  int last = -1;
-  for (int y = std::max(0, torso_i.y); y < img.rows && y - std::max(last, torso_i.y) <= gap + 1; ++y)
-    if (row_is_person(y)) last = y;
-  if (last >= 0) {
-    const bool to_edge = last == img.rows - 1 && region.br().y == frame.rows;
-    f.height_seen = !to_edge;
-    if (f.height_seen) f.height_ratio = (region.y + (last + 1) / sy - b.y) / b.height;
-  }
-
-  // Applied only beyond fit_tolerance (the preset is right for most people), within [fit_min, fit_max].
-  const auto settle = [&](double r, double max) {
-    return std::abs(std::log(r)) <= std::log1p(p.fit_tolerance) ? 1.0 : std::clamp(r, p.fit_min, std::max(p.fit_min, max));
-  };
-  const double wr = f.width_seen ? settle(std::max(f.width_ratio, 1e-3), p.fit_max) : 1.0;
-  const double hr = f.height_seen ? settle(std::max(f.height_ratio, 1e-3), std::min(p.fit_max, p.fit_max_height)) : 1.0;
-  const double shift = std::abs(f.shift * fw) <= p.fit_tolerance * b.width ? 0.0
-                                                                           : std::clamp(f.shift, -p.max_shift_in_faces, p.max_shift_in_faces);
-  f.body.width_in_faces *= wr;
-  f.body.height_in_faces *= hr;
-  if (shift != 0.0) f.body.centre_in_faces = shift;
-  f.box = body_from_face(face, f.body);
+  const std::vector<uint8_t> person = person_colours(r, hist, p);
+  measure_width(r, hist, person, frame.cols, p, f);
+  measure_height(r, hist, person, frame.rows, p, f);
+  apply_fit(face, p, f);
   return f;
 }
 

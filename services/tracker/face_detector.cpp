@@ -4,26 +4,33 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
-#include "paths.hpp"
 
 namespace gpilot {
 
-// Where the box puts the face, a face-and-a-half around it.
+// The face re-check's window around where the box puts the face, in face sizes (a face-and-a-half around it):
+// the face is found where it has moved to since the box was placed, up to a face width either side and most of
+// a face height up or down, while a face further off (a bystander's beside the user) stays outside.
+constexpr double kRecheckWindowWidthInFaces = 3.0;    //!< centred on the expected face
+constexpr double kRecheckWindowAboveInFaces = 0.75;   //!< from above the expected face's top
+constexpr double kRecheckWindowHeightInFaces = 2.5;
+
 cv::Rect face_recheck_window(const cv::Rect2d& b, const BodyProportions& r) {
   const cv::Rect2d f = face_from_body(b, r);
-  return cv::Rect(cv::Rect2d(f.x - f.width, f.y - 0.75 * f.height, 3 * f.width, 2.5 * f.height));
+  const double either_side = (kRecheckWindowWidthInFaces - 1) / 2;  // face widths left and right of the face
+  return cv::Rect(cv::Rect2d(f.x - either_side * f.width, f.y - kRecheckWindowAboveInFaces * f.height,
+                             kRecheckWindowWidthInFaces * f.width, kRecheckWindowHeightInFaces * f.height));
 }
 
 cv::Rect face_recheck_window(const cv::Rect2d& b, const TrackerParams& p) { return face_recheck_window(b, p.body()); }
 
-FaceDetector::FaceDetector(const TrackerParams& params) : p_(params) {
-  const std::string path = resolve_project_path(p_.face.cascade);
-  if (!cascade_.load(path))
-    throw std::runtime_error("face cascade '" + path + "' is missing or not a cascade (package opencv-data)");
+FaceDetector::FaceDetector(const TrackerParams& params, cv::CascadeClassifier cascade)
+    : p_(params), cascade_(std::move(cascade)) {
+  if (cascade_.empty()) throw std::invalid_argument("FaceDetector: the face cascade is empty (load_face_cascade)");
 }
 
 namespace {

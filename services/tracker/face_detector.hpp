@@ -1,5 +1,5 @@
-// The user search of the paper: OpenCV's Haar face cascade (file from opencv-data, a config key) on the
-// frame or a shrunk copy, and the body box made from the face box by the head-body ratio.
+// The user search of the paper: OpenCV's Haar face cascade (file from opencv-data, a config key, loaded by the
+// caller: face_cascade.hpp) on the frame or a shrunk copy, and the body box made from the face box by the head-body ratio.
 #pragma once
 
 #include <optional>
@@ -24,8 +24,9 @@ cv::Rect face_recheck_window(const cv::Rect2d& body, const TrackerParams& params
 
 class FaceDetector {
  public:
-  // Throws std::runtime_error when the cascade file is missing or does not load.
-  explicit FaceDetector(const TrackerParams& params);
+  // cascade: tracker.face.cascade, read by load_face_cascade (face_cascade.hpp); an empty one throws
+  // std::invalid_argument.
+  FaceDetector(const TrackerParams& params, cv::CascadeClassifier cascade);
 
   // The largest face in frame (CV_8UC3 or CV_8UC1), or none. min_face (frame pixels): the caller takes no
   // smaller face, so the enlarged search (face.upscale) looks only for faces from there (none when all its

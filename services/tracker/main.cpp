@@ -3,6 +3,7 @@
 // accepted frame, with that frame's seq and utime) and HEALTH. A frame that does not decode or that the
 // tracker cannot use is rejected (counted in HEALTH) and does not advance the track.
 #include "service_cli.hpp"
+#include "system/opencv_threads.hpp"
 #include "tracker_service.hpp"
 
 int main(int argc, char** argv) {
@@ -10,6 +11,7 @@ int main(int argc, char** argv) {
                          "Haar face search, body box by head-body ratio, DSST tracking with PSR confidence.\n"
                          "CAMERA + TRACKER_INIT in, USER_TRACK out.");
   return cli.run_node(argc, argv, [](const gpilot::Config& config, gpilot::BusNode& node) {
+    gpilot::set_opencv_threads(gpilot::opencv_threads_of(config, "tracker"));
     const auto stage = gpilot::start_tracker_service(config, node);
     node.run();
     return 0;

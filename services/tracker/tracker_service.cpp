@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "bus_node.hpp"
+#include "face_cascade.hpp"
 #include "image_codec.hpp"
 #include "seq_gaps.hpp"
 #include "tracker_channels.hpp"
@@ -47,15 +48,12 @@ user_track_t to_message(const TrackOutput& t, const image_t& frame) {
 
 std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node) {
   struct State {
-    explicit State(const gpilot::TrackerParams& p) : tracker(p) {}
+    explicit State(const gpilot::TrackerParams& p) : tracker(p, gpilot::load_face_cascade(p)) {}
     gpilot::UserTracker tracker;
     cv::Mat frame;
     gpilot::SeqGaps gaps;
   };
   const auto params = config.section<gpilot::TrackerParams>("tracker");
-  // OpenCV's own threads (the cascade's parallel_for, resize) add nothing on a machine whose cores the other
-  // stages use, and the stage's cost is budgeted on one core (face.scan_slice_pixels).
-  cv::setNumThreads(params.opencv_threads);
   auto state = std::make_shared<State>(params);
   auto& tracker = state->tracker;
   auto& frame = state->frame;

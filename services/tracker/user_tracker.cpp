@@ -5,12 +5,19 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace gpilot {
 
-UserTracker::UserTracker(const TrackerParams& params)
-    : p_(params), faces_(params), dsst_(params.dsst), track_body_(params.body()) {}
+namespace {
+// The re-check takes a face only within this factor of the width the track expects, larger or smaller: a face
+// twice or half the size is another person's (nearer or further), not this user's after a DSST scale drift.
+constexpr double kMaxRecheckFaceScale = 2.0;
+}  // namespace
+
+UserTracker::UserTracker(const TrackerParams& params, cv::CascadeClassifier face_cascade)
+    : p_(params), faces_(params, std::move(face_cascade)), dsst_(params.dsst), track_body_(params.body()) {}
 
 std::string UserTracker::set_box(const cv::Rect2d& box) {
   if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height))
@@ -91,7 +98,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
-  if (scale > std::log(2.0)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
+  if (scale > std::log(kMaxRecheckFaceScale)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
     ++other_faces_;

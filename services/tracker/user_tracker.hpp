@@ -42,8 +42,8 @@ struct TrackOutput {
 
 class UserTracker {
  public:
-  // Loads the face cascade: throws std::runtime_error if it cannot.
-  explicit UserTracker(const TrackerParams& params);
+  // face_cascade: tracker.face.cascade, read by load_face_cascade (face_cascade.hpp) where the tracker is built.
+  UserTracker(const TrackerParams& params, cv::CascadeClassifier face_cascade);
 
   // Asks for a track on box from the next frame on. "" if accepted, else why not (non-finite, < 2 px).
   std::string set_box(const cv::Rect2d& box);

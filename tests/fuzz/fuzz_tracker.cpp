@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "face_cascade.hpp"
 #include "fuzz_input.hpp"
 #include "message_checks.hpp"
 #include "stage_frames.hpp"
@@ -37,7 +38,7 @@ gpilot::TrackerParams params() {
 
 const gpilot::UserTracker& prototype() {
   // The Haar cascade loads once; each sequence runs on a copy of the untouched tracker.
-  static const gpilot::UserTracker t{params()};
+  static const gpilot::UserTracker t{params(), gpilot::load_face_cascade(params())};
   return t;
 }
 

@@ -21,7 +21,7 @@ SyntheticFrame out_pose_frame() {
 void BM_PoseDetector(benchmark::State& state) {
   const SyntheticFrame f = out_pose_frame();
   const PoseParams p;
-  cv::setNumThreads(p.threads);  // as PoseEstimator sets it
+  cv::setNumThreads(p.threads);  // as gpilot-hands sets it (opencv_threads_of)
   PersonDetector detector(p, PoseModels::load(p).detector);
   size_t found = 0;
   for (auto _ : state) found = detector.detect(f.bgr).size();
@@ -32,7 +32,7 @@ void run_landmarks(benchmark::State& state, const char* model) {
   const SyntheticFrame f = out_pose_frame();
   PoseParams p;
   p.model = model;
-  cv::setNumThreads(p.threads);  // as PoseEstimator sets it
+  cv::setNumThreads(p.threads);  // as gpilot-hands sets it (opencv_threads_of)
   PoseModels models = PoseModels::load(p);
   PersonDetector detector(p, models.detector);
   const auto d = choose_user_detection(detector.detect(f.bgr), f.truth.user_box);

@@ -10,6 +10,7 @@
 
 #include "dsst.hpp"
 #include "fhog.hpp"
+#include "face_cascade.hpp"
 #include "face_detector.hpp"
 // The textured scene of the DSST known-answer tests.
 #include "../../tests/unit/tracker/known_scene.hpp"
@@ -51,7 +52,7 @@ void BM_FaceSearch640x480(benchmark::State& state) {
   cv::setNumThreads(1);
   gpilot::TrackerParams p;
   p.face.downscale = static_cast<double>(state.range(0));
-  gpilot::FaceDetector faces(p);
+  gpilot::FaceDetector faces(p, load_face_cascade(p));
   const cv::Mat frame = gpilot::test::texture(cv::Size(640, 480), 11);
   for (auto _ : state) benchmark::DoNotOptimize(faces.detect(frame));
 }

@@ -16,6 +16,7 @@
 #include "keypoint_truth.hpp"
 #include "service_cli.hpp"
 #include "synthetic_eval.hpp"
+#include "system/opencv_threads.hpp"
 #include "tracker/tracker_params.hpp"
 #include "video_eval.hpp"
 
@@ -111,6 +112,11 @@ int main(int argc_given, char** argv_given) {
 
   return cli.run(argc, argv, [&](const Config& config) {
     const bool png_given = app.count("--png-dir") > 0;
+    // OpenCV's threads, once for the process: the hands stage's, and the tracker's where its code runs too
+    // (--video's tracker, --coco's face search).
+    const bool runs_tracker = !video.source.empty() || !coco.annotations.empty();
+    set_opencv_threads(fewest_opencv_threads(
+        {opencv_threads_of(config, "hands"), runs_tracker ? opencv_threads_of(config, "tracker") : std::nullopt}));
     if (!video.source.empty()) {
       video.csv_path = csv_path;
       video.json = json;

@@ -1,5 +1,7 @@
 #include "user_view_choice.hpp"
 
+#include "face_cascade.hpp"
+
 namespace gpilot {
 
 namespace {
@@ -28,7 +30,7 @@ const char* box_mode_name(BoxMode m) {
   }
 }
 
-UserViewChooser::UserViewChooser(const TrackerParams& tracker, BoxMode mode) : tracker_(tracker), mode_(mode), faces_(tracker) {}
+UserViewChooser::UserViewChooser(const TrackerParams& tracker, BoxMode mode) : tracker_(tracker), mode_(mode), faces_(tracker, load_face_cascade(tracker)) {}
 
 ChosenView UserViewChooser::choose(const cv::Mat& bgr, const cv::Rect2f& annotation_box, const PersonKeypointTruth& truth,
                                    int32_t track_id) {

@@ -26,6 +26,7 @@
 #include "image_codec.hpp"
 #include "image_codec_params.hpp"
 #include "overlay.hpp"
+#include "tracker/face_cascade.hpp"
 #include "tracker/tracker_params.hpp"
 #include "tracker/tracker_service.hpp"
 #include "video_sink.hpp"
@@ -127,7 +128,7 @@ int run_video_eval(const VideoEvalOptions& o, const Config& config) {
   auto source = open_source(o);
   const double fps = source->fps() > 0 ? source->fps() : o.fps;
   const auto tracker_params = config.section<TrackerParams>("tracker");
-  UserTracker tracker(tracker_params);
+  UserTracker tracker(tracker_params, load_face_cascade(tracker_params));
   if (!o.init_box.empty()) {
     const std::string why = tracker.set_box(parse_init_box(o.init_box));
     if (!why.empty()) throw std::runtime_error("--init-box: " + why);

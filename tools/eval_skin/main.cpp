@@ -95,7 +95,7 @@ void add_adapted(const SkinParams& params, const SkinModel& model, const cv::Mat
     faces += adapter.user_samples() > 0;
   }
   fixed.add(SkinClassifier(model, params.threshold), bgr, mask, face);
-  adapted.add(adapter.classifier(), bgr, mask, face);
+  adapted.add(adapter.classifier_for_frame(), bgr, mask, face);
 }
 
 }  // namespace

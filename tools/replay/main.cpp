@@ -36,6 +36,7 @@
 #include "log.hpp"
 #include "process_channels.hpp"
 #include "service_cli.hpp"
+#include "system/opencv_threads.hpp"
 #include "tracker/tracker_channels.hpp"
 #include "tracker/tracker_service.hpp"
 
@@ -174,260 +175,178 @@ const std::map<std::string, StageEntry>& stages() {
   return table;
 }
 
-}  // namespace
-}  // namespace gpilot
-
-int main(int argc, char** argv) {
-  using namespace gpilot;
-  ServiceCli cli("gpilot-replay",
-                 "Run a stage's code over an LCM log, faster than real time; write a log with the original inputs and\n"
-                 "the new outputs; with --check, print where the new outputs differ from the recorded ones.\n"
-                 "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
-                 "decide (HAND_OBS -> GESTURE_CMD), flight (GESTURE_CMD, USER_TRACK, VEHICLE_STATE, AUTOPILOT,\n"
-                 "FLIGHT_CONTROL -> FLIGHT_SETPOINT: gpilot-flight's service with its timer fired at each recorded\n"
-                 "setpoint's time; the vehicle's states and what the autopilot said come from the log; alone, not in a chain), or a chain such as tracker,hands,decide.");
+// What gpilot-replay was asked (its command line).
+struct ReplayOptions {
   std::string in_path, out_path, stage_arg;
   bool check = false, inputs_only = false, all_frames = false, recorded_outputs = false;
   double from_s = 0, to_s = 0;
-  cli.app().add_option("log", in_path, "the recorded LCM log")->required();
-  cli.app().add_option("--stage", stage_arg, "stage or comma-separated chain: tracker, hands, decide, flight")->required();
-  cli.app().add_option("--out", out_path, "write the new log here");
-  cli.app().add_flag("--check", check, "compare the new outputs with the recorded ones (exit 1 on any difference)");
-  cli.app().add_option("--from", from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
-  cli.app().add_option("--to", to_s, "stop this many seconds after the log's first event (0 = the end)")->check(CLI::NonNegativeNumber);
-  cli.app().add_flag("--inputs-only", inputs_only, "the new log holds only the stages' inputs and outputs (small logs)");
-  cli.app().add_flag("--recorded-outputs", recorded_outputs,
-                     "the new log holds the recorded outputs and the stages' logged CONFIG, not the replay's: a cut of\n"
-                     "a live run, whose replay is then checked against what the live stages sent (tests/replay)");
-  cli.app().add_flag("--all-frames", all_frames,
-                     "give the stages every recorded frame (default: only those the live stages processed, i.e. whose\n"
-                     "USER_TRACK / HAND_OBS the log records; a log without those outputs gives every frame)");
-  return cli.run(argc, argv, [&](const Config& config) -> int {
-    std::vector<std::string> chain;
-    std::stringstream ss(stage_arg);
-    for (std::string s; std::getline(ss, s, ',');) {
-      if (!stages().count(s)) throw std::invalid_argument("unknown stage '" + s + "' (tracker, hands, decide, flight)");
-      chain.push_back(s);
-    }
-    // A timer-driven stage is given its inputs in the order the live one had them, which only the log knows.
-    for (const auto& s : chain)
-      if (stages().at(s).ticks && chain.size() > 1)
-        throw std::invalid_argument("stage '" + s + "' replays alone (its inputs come from the log, in the order it had them)");
-    std::set<std::string> outputs, inputs;
-    for (const auto& s : chain)
-      for (const auto& o : stages().at(s).outputs) outputs.insert(o);
-    for (const auto& s : chain)
-      for (const auto& i : stages().at(s).inputs)
-        if (!outputs.count(i)) inputs.insert(i);
+};
 
-    // The frames the live stages processed (ReplayPacing): a first pass over the log records their outputs' seqs.
-    ReplayPacing pacing;
-    if (!all_frames)
-      for (const auto& s : chain)
-        for (const auto& [input, output] : stages().at(s).paced) pacing.add_rule(input, output);
-    // The same pass finds the config each live stage published on CONFIG when it started (the first one of its
-    // process name): a stage replays with its own run's config unless --config or --set chose one.
-    std::map<std::string, std::string> logged_yaml;  // process -> YAML
-    // A replayed tracker given the log's manual boxes: each before the frame the live one started it on (InitAlign).
-    namespace tc = tracker_channels;
-    const bool align_inits = std::find(chain.begin(), chain.end(), "tracker") != chain.end() &&
-                             inputs.count(tc::kTrackerInit.name) && inputs.count(tc::kCamera.name);
-    InitAlign align;
-    std::vector<std::vector<uint8_t>> inits_logged;  // every aligned init's bytes, in log order
-    {
-      const std::set<std::string> paced_outputs = pacing.output_channels();
-      lcm::LogFile scan(in_path, "r");
-      if (!scan.good()) throw std::runtime_error(in_path + ": cannot open log");
-      int32_t last_track_id = -1;
-      int8_t last_status = -1;
-      for (const lcm::LogEvent* ev = scan.readNextEvent(); ev; ev = scan.readNextEvent()) {
-        if (align_inits) {
-          if (ev->channel == tc::kCamera.name) {
-            align.frame(seq_of_event(*ev));
-          } else if (ev->channel == tc::kUserTrack.name) {
-            user_track_t t{};
-            if (t.decode(ev->data, 0, ev->datalen) > 0) {
-              const bool new_track = t.track_id != last_track_id;
-              if (t.init_source == user_track_t::INIT_MANUAL && new_track)
-                align.manual_start(t.seq, {t.box[0], t.box[1], t.box[2], t.box[3]});
-              else if (last_status == user_track_t::STATUS_TRACKING && (t.status != user_track_t::STATUS_TRACKING || new_track))
-                align.dropped(t.seq);
-              last_track_id = t.track_id;
-              last_status = t.status;
-            }
-          } else if (ev->channel == tc::kTrackerInit.name) {
-            if (const auto m = aligned_init(*ev)) {
-              if (m->command == tracker_init_t::COMMAND_SET_BOX) align.set_box({m->box[0], m->box[1], m->box[2], m->box[3]});
-              else align.reset();
-              const auto* p = static_cast<const uint8_t*>(ev->data);
-              inits_logged.emplace_back(p, p + ev->datalen);
-            }
-          }
+// The stages of `--stage a,b,c`, checked: known, and a timer-driven stage alone (it is given its inputs in the
+// order the live one had them, which only the log knows).
+std::vector<std::string> parse_chain(const std::string& stage_arg) {
+  std::vector<std::string> chain;
+  std::stringstream ss(stage_arg);
+  for (std::string s; std::getline(ss, s, ',');) {
+    if (!stages().count(s)) throw std::invalid_argument("unknown stage '" + s + "' (tracker, hands, decide, flight)");
+    chain.push_back(s);
+  }
+  for (const auto& s : chain)
+    if (stages().at(s).ticks && chain.size() > 1)
+      throw std::invalid_argument("stage '" + s + "' replays alone (its inputs come from the log, in the order it had them)");
+  return chain;
+}
+
+// What the first pass over the log finds: the frames the live stages processed (ReplayPacing: their outputs'
+// seqs), the config each live stage published on CONFIG when it started (the first one of its process name),
+// and where a replayed tracker is given the log's manual boxes and resets (InitAlign: before the frame the live
+// one acted on each).
+struct LogScan {
+  ReplayPacing pacing;
+  std::map<std::string, std::string> logged_yaml;  // process -> YAML
+  bool align_inits = false;
+  InitAlign align;
+  std::vector<std::vector<uint8_t>> inits_logged;  // every aligned init's bytes, in log order
+};
+
+LogScan scan_log(const ReplayOptions& o, const std::vector<std::string>& chain, const std::set<std::string>& inputs,
+                 bool read_configs) {
+  namespace tc = tracker_channels;
+  LogScan scan;
+  if (!o.all_frames)
+    for (const auto& s : chain)
+      for (const auto& [input, output] : stages().at(s).paced) scan.pacing.add_rule(input, output);
+  scan.align_inits = std::find(chain.begin(), chain.end(), "tracker") != chain.end() &&
+                     inputs.count(tc::kTrackerInit.name) && inputs.count(tc::kCamera.name);
+  const std::set<std::string> paced_outputs = scan.pacing.output_channels();
+  lcm::LogFile log(o.in_path, "r");
+  if (!log.good()) throw std::runtime_error(o.in_path + ": cannot open log");
+  int32_t last_track_id = -1;
+  int8_t last_status = -1;
+  for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent()) {
+    if (scan.align_inits) {
+      if (ev->channel == tc::kCamera.name) {
+        scan.align.frame(seq_of_event(*ev));
+      } else if (ev->channel == tc::kUserTrack.name) {
+        user_track_t t{};
+        if (t.decode(ev->data, 0, ev->datalen) > 0) {
+          const bool new_track = t.track_id != last_track_id;
+          if (t.init_source == user_track_t::INIT_MANUAL && new_track)
+            scan.align.manual_start(t.seq, {t.box[0], t.box[1], t.box[2], t.box[3]});
+          else if (last_status == user_track_t::STATUS_TRACKING && (t.status != user_track_t::STATUS_TRACKING || new_track))
+            scan.align.dropped(t.seq);
+          last_track_id = t.track_id;
+          last_status = t.status;
         }
-        if (paced_outputs.count(ev->channel)) {
-          pacing.recorded(ev->channel, seq_of_event(*ev));
-        } else if (!cli.config_given() && ev->channel == process_channels::kConfig.name) {
-          config_t c{};
-          if (c.decode(ev->data, 0, ev->datalen) > 0 && check_message(c).empty()) logged_yaml.emplace(c.process, c.yaml);
+      } else if (ev->channel == tc::kTrackerInit.name) {
+        if (const auto m = aligned_init(*ev)) {
+          if (m->command == tracker_init_t::COMMAND_SET_BOX) scan.align.set_box({m->box[0], m->box[1], m->box[2], m->box[3]});
+          else scan.align.reset();
+          const auto* p = static_cast<const uint8_t*>(ev->data);
+          scan.inits_logged.emplace_back(p, p + ev->datalen);
         }
       }
     }
-    std::map<std::string, Config> stage_config;
-    for (const auto& s : chain) {
-      const auto it = logged_yaml.find("gpilot-" + s);
-      if (it == logged_yaml.end()) {
-        stage_config.emplace(s, config);
-        if (!cli.config_given())
-          log_warn("%s: no CONFIG of gpilot-%s in the log: the built-in defaults (--config to choose)", s.c_str(), s.c_str());
-        continue;
-      }
-      Config logged = Config::from_string(it->second, "the CONFIG of gpilot-" + s + " in " + in_path);
-      validate_config(logged);
-      stage_config.emplace(s, std::move(logged));
-      log_info("%s runs with the config gpilot-%s published in the log", s.c_str(), s.c_str());
+    if (paced_outputs.count(ev->channel)) {
+      scan.pacing.recorded(ev->channel, seq_of_event(*ev));
+    } else if (read_configs && ev->channel == process_channels::kConfig.name) {
+      config_t c{};
+      if (c.decode(ev->data, 0, ev->datalen) > 0 && check_message(c).empty()) scan.logged_yaml.emplace(c.process, c.yaml);
     }
-    if (align_inits) align.finish();
-    size_t next_init = 0;
-    lcm::LogFile in(in_path, "r");
-    if (!in.good()) throw std::runtime_error(in_path + ": cannot open log");
-    std::unique_ptr<lcm::LogFile> out;
-    if (!out_path.empty()) {
-      out = std::make_unique<lcm::LogFile>(out_path, "w");
-      if (!out->good()) throw std::runtime_error(out_path + ": cannot write log");
-    }
-    int64_t eventnum = 0;
-    auto write = [&](int64_t ts, const std::string& ch, const void* data, size_t size) {
-      if (!out) return;
-      lcm::LogEvent ev{};
-      ev.eventnum = eventnum++;
-      ev.timestamp = ts;
-      ev.channel = ch;
-      ev.datalen = static_cast<int32_t>(size);
-      ev.data = const_cast<void*>(data);
-      out->writeEvent(&ev);
-    };
+  }
+  if (scan.align_inits) scan.align.finish();
+  return scan;
+}
 
-    BusNode node("gpilot-replay", "memq://");
-    int64_t now_ts = 0;
-    std::vector<std::shared_ptr<void>> running;
-    std::unique_ptr<ReplayTicks> ticks;
-    std::unique_ptr<PairHold> pair_hold;
-    bool configs_written = false;
-    for (const auto& s : chain) {
-      running.push_back(stages().at(s).start(stage_config.at(s), node));
-      if (stages().at(s).ticks) ticks = std::make_unique<ReplayTicks>(stages().at(s).ticks());
+// Each stage's config: the one its live process published in the log, else `given` (--config/--set, or the
+// defaults, said so).
+std::map<std::string, Config> stage_configs(const std::vector<std::string>& chain, const LogScan& scan,
+                                            const Config& given, bool config_given, const std::string& in_path) {
+  std::map<std::string, Config> stage_config;
+  for (const auto& s : chain) {
+    const auto it = scan.logged_yaml.find("gpilot-" + s);
+    if (it == scan.logged_yaml.end()) {
+      stage_config.emplace(s, given);
+      if (!config_given)
+        log_warn("%s: no CONFIG of gpilot-%s in the log: the built-in defaults (--config to choose)", s.c_str(), s.c_str());
+      continue;
+    }
+    Config logged = Config::from_string(it->second, "the CONFIG of gpilot-" + s + " in " + in_path);
+    validate_config(logged);
+    stage_config.emplace(s, std::move(logged));
+    log_info("%s runs with the config gpilot-%s published in the log", s.c_str(), s.c_str());
+  }
+  return stage_config;
+}
+
+// The replay's second pass: the chain's stages on a memq:// node on the log's clock, given the log's events one
+// by one; what they publish is collected (and written to the new log, with what the options keep of the old).
+class ChainReplay {
+ public:
+  ChainReplay(const ReplayOptions& o, std::vector<std::string> chain, std::set<std::string> inputs,
+              std::set<std::string> outputs, LogScan& scan, std::map<std::string, Config> stage_config)
+      : o_(o), chain_(std::move(chain)), inputs_(std::move(inputs)), outputs_(std::move(outputs)), scan_(scan),
+        stage_config_(std::move(stage_config)) {
+    if (!o_.out_path.empty()) {
+      out_ = std::make_unique<lcm::LogFile>(o_.out_path, "w");
+      if (!out_->good()) throw std::runtime_error(o_.out_path + ": cannot write log");
+    }
+    std::vector<std::optional<int>> threads_asked;  // once for the process: no stage sets it for another
+    for (const auto& s : chain_) threads_asked.push_back(opencv_threads_of(stage_config_.at(s), s));
+    set_opencv_threads(fewest_opencv_threads(threads_asked));
+    for (const auto& s : chain_) {
+      running_.push_back(stages().at(s).start(stage_config_.at(s), node_));
+      if (stages().at(s).ticks) ticks_ = std::make_unique<ReplayTicks>(stages().at(s).ticks());
       // Both halves from the log (in a chain with the tracker, the track follows its frame at once).
       const auto& [first, second] = stages().at(s).paired;
-      if (!first.empty() && inputs.count(first) && inputs.count(second)) pair_hold = std::make_unique<PairHold>(first, second);
+      if (!first.empty() && inputs_.count(first) && inputs_.count(second)) pair_hold_ = std::make_unique<PairHold>(first, second);
     }
-    // The new log carries the config each replayed stage ran with, as a live run's does.
-    auto write_configs = [&](int64_t ts) {
-      for (const auto& s : chain) {
-        config_t c{};
-        c.utime = ts;
-        c.process = "gpilot-" + s;
-        c.yaml = effective_config_yaml(stage_config.at(s));
-        std::vector<uint8_t> bytes(static_cast<size_t>(c.getEncodedSize()));
-        c.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-        write(ts, process_channels::kConfig.name, bytes.data(), bytes.size());
-      }
-      configs_written = true;
-    };
     // Messages are compared without their bus signatures: a live run's outputs were signed with its key, at
     // its times; a replay signs nothing (memq:// has no key) and strips the recorded inputs' signatures.
-    std::map<std::string, std::vector<std::vector<uint8_t>>> produced, recorded;
-    const auto message_of = [](const void* data, size_t size) {
-      const auto* p = static_cast<const uint8_t*>(data);
-      return std::vector<uint8_t>(p, p + message_size_of(data, size));
-    };
-    for (const auto& o : outputs)
-      node.subscribe_raw(o, [&](const std::string& ch, const void* data, size_t size, int64_t) {
-        produced[ch].push_back(message_of(data, size));
-        if (!recorded_outputs) write(now_ts, ch, data, size);
+    for (const auto& ch : outputs_)
+      node_.subscribe_raw(ch, [this](const std::string& channel, const void* data, size_t size, int64_t) {
+        produced_[channel].push_back(message_of(data, size));
+        if (!o_.recorded_outputs) write(now_ts_, channel, data, size);
       });
+  }
 
-    int64_t n_events = 0, n_inputs = 0, first_ts = -1;
+  // Every event of the log between --from and --to.
+  void run() {
+    lcm::LogFile in(o_.in_path, "r");
+    if (!in.good()) throw std::runtime_error(o_.in_path + ": cannot open log");
+    int64_t first_ts = -1;
     for (const lcm::LogEvent* ev = in.readNextEvent(); ev; ev = in.readNextEvent()) {
       if (first_ts < 0) first_ts = ev->timestamp;
       const double t = (ev->timestamp - first_ts) * 1e-6;
-      if (t < from_s) continue;
-      if (to_s > 0 && t > to_s) break;
-      ++n_events;
-      now_ts = ev->timestamp;
-      const auto* p = static_cast<const uint8_t*>(ev->data);
-      node.set_log_time(now_ts);  // the stages' clock is the log's (BusNode::now)
-      if (!configs_written && !recorded_outputs) write_configs(now_ts);
-      if (ev->channel == process_channels::kConfig.name) {  // a replayed stage's is replaced by the one it replays with
-        config_t c{};
-        const bool replayed = c.decode(ev->data, 0, ev->datalen) > 0 && c.process.rfind("gpilot-", 0) == 0 &&
-                              std::find(chain.begin(), chain.end(), c.process.substr(7)) != chain.end();
-        if ((replayed && recorded_outputs) || (!replayed && !inputs_only))
-          write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
-        continue;
-      }
-      if (outputs.count(ev->channel)) {
-        recorded[ev->channel].push_back(message_of(p, static_cast<size_t>(ev->datalen)));
-        if (recorded_outputs) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
-        if (ticks && ev->channel == ticks->output()) {
-          // The live stage's timer fired here: first the inputs it had, then the tick at its own instant.
-          const int64_t tick_utime = ticks->tick(recorded[ev->channel].back(), [&](const std::string& ch, int64_t ts,
-                                                                                  const std::vector<uint8_t>& bytes) {
-            node.set_log_time(ts);
-            node.publish_raw(ch, bytes.data(), bytes.size());
-            node.drain();
-          });
-          if (tick_utime >= 0) node.run_timers_at(tick_utime);
-          node.drain();
-          node.set_log_time(now_ts);
-        }
-        continue;
-      }
-      if (ev->channel == process_channels::kHealth.name) continue;  // the live processes' health is not part of a replay
-      const bool input = inputs.count(ev->channel) > 0;
-      if (input || !inputs_only) write(ev->timestamp, ev->channel, ev->data, static_cast<size_t>(ev->datalen));
-      if (!input) continue;
-      const int64_t seq = seq_of_event(*ev);
-      if (align_inits && ev->channel == tc::kTrackerInit.name && aligned_init(*ev) && align.frame_of(next_init++))
-        continue;  // given before the frame it took effect on
-      if (!pacing.give(ev->channel, seq)) continue;
-      ++n_inputs;
-      if (align_inits && ev->channel == tc::kCamera.name)
-        for (const size_t i : align.due_before(seq)) {
-          node.publish_raw(tc::kTrackerInit.name, inits_logged[i].data(), inits_logged[i].size());
-          node.drain();
-        }
-      if (pair_hold && pair_hold->pairs(ev->channel)) {
-        for (const auto& m : pair_hold->add(ev->channel, seq, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen))) {
-          node.set_log_time(m.timestamp);
-          node.publish_raw(m.channel, m.bytes.data(), m.bytes.size());
-          node.drain();
-        }
-        node.set_log_time(now_ts);
-        continue;
-      }
-      if (ticks && ticks->keyed(ev->channel)) {
-        ticks->hold(ev->channel, ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen));
-        continue;
-      }
-      node.publish_raw(ev->channel, ev->data, static_cast<size_t>(ev->datalen));
-      node.drain();
-      if (n_inputs % 200 == 0) std::fprintf(stderr, "\rgpilot-replay: %lld input messages", static_cast<long long>(n_inputs));
+      if (t < o_.from_s) continue;
+      if (o_.to_s > 0 && t > o_.to_s) break;
+      ++n_events_;
+      now_ts_ = ev->timestamp;
+      node_.set_log_time(now_ts_);  // the stages' clock is the log's (BusNode::now)
+      if (!configs_written_ && !o_.recorded_outputs) write_configs(now_ts_);
+      if (ev->channel == process_channels::kConfig.name) on_config(*ev);
+      else if (outputs_.count(ev->channel)) on_recorded_output(*ev);
+      else if (ev->channel != process_channels::kHealth.name) on_other(*ev);  // the live processes' health is not replayed
     }
     std::fprintf(stderr, "\rgpilot-replay: %lld events, %lld inputs to %s, rejected %lld, %lld frames the live stage skipped\n",
-                 static_cast<long long>(n_events), static_cast<long long>(n_inputs), stage_arg.c_str(),
-                 static_cast<long long>(node.stats().rejected_count()), static_cast<long long>(pacing.held_back()));
-    if (pair_hold && pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting()) > 0)
+                 static_cast<long long>(n_events_), static_cast<long long>(n_inputs_), o_.stage_arg.c_str(),
+                 static_cast<long long>(node_.stats().rejected_count()), static_cast<long long>(scan_.pacing.held_back()));
+    if (pair_hold_ && pair_hold_->never_paired() + static_cast<int64_t>(pair_hold_->waiting()) > 0)
       log_info("%lld inputs met no partner of their seq in the log (a frame or a track a live stage skipped): not given",
-               static_cast<long long>(pair_hold->never_paired() + static_cast<int64_t>(pair_hold->waiting())));
-    if (ticks && ticks->not_logged() > 0)
+               static_cast<long long>(pair_hold_->never_paired() + static_cast<int64_t>(pair_hold_->waiting())));
+    if (ticks_ && ticks_->not_logged() > 0)
       log_warn("%lld of the live stage's ticks had an input the log lacks (the logger lost it): they may differ",
-               static_cast<long long>(ticks->not_logged()));
+               static_cast<long long>(ticks_->not_logged()));
+  }
+
+  // Prints each output's counts (and with --check its differences from the recorded ones); the differences.
+  int report() {
     int differences = 0;
-    for (const auto& o : outputs) {
-      const auto& a = produced[o];
-      const auto& b = recorded[o];
-      std::printf("%-12s new %6zu  recorded %6zu", o.c_str(), a.size(), b.size());
-      if (!check) {
+    for (const auto& ch : outputs_) {
+      const auto& a = produced_[ch];
+      const auto& b = recorded_[ch];
+      std::printf("%-12s new %6zu  recorded %6zu", ch.c_str(), a.size(), b.size());
+      if (!o_.check) {
         std::printf("\n");
         continue;
       }
@@ -442,7 +361,162 @@ int main(int argc, char** argv) {
       std::printf("\n");
       differences += diff;
     }
-    if (check) std::printf("%d differences\n", differences);
-    return check && differences ? 1 : 0;
-  });
+    if (o_.check) std::printf("%d differences\n", differences);
+    return differences;
+  }
+
+ private:
+  static std::vector<uint8_t> message_of(const void* data, size_t size) {
+    const auto* p = static_cast<const uint8_t*>(data);
+    return std::vector<uint8_t>(p, p + message_size_of(data, size));
+  }
+
+  void write(int64_t ts, const std::string& ch, const void* data, size_t size) {
+    if (!out_) return;
+    lcm::LogEvent ev{};
+    ev.eventnum = eventnum_++;
+    ev.timestamp = ts;
+    ev.channel = ch;
+    ev.datalen = static_cast<int32_t>(size);
+    ev.data = const_cast<void*>(data);
+    out_->writeEvent(&ev);
+  }
+  void write(const lcm::LogEvent& ev) { write(ev.timestamp, ev.channel, ev.data, static_cast<size_t>(ev.datalen)); }
+
+  // The new log carries the config each replayed stage ran with, as a live run's does.
+  void write_configs(int64_t ts) {
+    for (const auto& s : chain_) {
+      config_t c{};
+      c.utime = ts;
+      c.process = "gpilot-" + s;
+      c.yaml = effective_config_yaml(stage_config_.at(s));
+      std::vector<uint8_t> bytes(static_cast<size_t>(c.getEncodedSize()));
+      c.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+      write(ts, process_channels::kConfig.name, bytes.data(), bytes.size());
+    }
+    configs_written_ = true;
+  }
+
+  // A CONFIG: a replayed stage's is replaced by the one it replays with (kept with --recorded-outputs).
+  void on_config(const lcm::LogEvent& ev) {
+    config_t c{};
+    const bool replayed = c.decode(ev.data, 0, ev.datalen) > 0 && c.process.rfind("gpilot-", 0) == 0 &&
+                          std::find(chain_.begin(), chain_.end(), c.process.substr(7)) != chain_.end();
+    if ((replayed && o_.recorded_outputs) || (!replayed && !o_.inputs_only)) write(ev);
+  }
+
+  // What a live stage sent: kept to compare with; for a timer-driven stage, where its timer fired.
+  void on_recorded_output(const lcm::LogEvent& ev) {
+    recorded_[ev.channel].push_back(message_of(ev.data, static_cast<size_t>(ev.datalen)));
+    if (o_.recorded_outputs) write(ev);
+    if (!ticks_ || ev.channel != ticks_->output()) return;
+    // The live stage's timer fired here: first the inputs it had, then the tick at its own instant.
+    const int64_t tick_utime = ticks_->tick(recorded_[ev.channel].back(), [&](const std::string& ch, int64_t ts,
+                                                                             const std::vector<uint8_t>& bytes) {
+      node_.set_log_time(ts);
+      node_.publish_raw(ch, bytes.data(), bytes.size());
+      node_.drain();
+    });
+    if (tick_utime >= 0) node_.run_timers_at(tick_utime);
+    node_.drain();
+    node_.set_log_time(now_ts_);
+  }
+
+  // Any other event: written as the options say; an input of the chain given to it, when the live stage had it
+  // (pacing), in the order the live stage had it (aligned inits, pairs, ticks).
+  void on_other(const lcm::LogEvent& ev) {
+    namespace tc = tracker_channels;
+    const bool input = inputs_.count(ev.channel) > 0;
+    if (input || !o_.inputs_only) write(ev);
+    if (!input) return;
+    const auto* p = static_cast<const uint8_t*>(ev.data);
+    const int64_t seq = seq_of_event(ev);
+    if (scan_.align_inits && ev.channel == tc::kTrackerInit.name && aligned_init(ev) && scan_.align.frame_of(next_init_++))
+      return;  // given before the frame it took effect on
+    if (!scan_.pacing.give(ev.channel, seq)) return;
+    ++n_inputs_;
+    if (scan_.align_inits && ev.channel == tc::kCamera.name)
+      for (const size_t i : scan_.align.due_before(seq)) {
+        node_.publish_raw(tc::kTrackerInit.name, scan_.inits_logged[i].data(), scan_.inits_logged[i].size());
+        node_.drain();
+      }
+    if (pair_hold_ && pair_hold_->pairs(ev.channel)) {
+      for (const auto& m : pair_hold_->add(ev.channel, seq, ev.timestamp, std::vector<uint8_t>(p, p + ev.datalen))) {
+        node_.set_log_time(m.timestamp);
+        node_.publish_raw(m.channel, m.bytes.data(), m.bytes.size());
+        node_.drain();
+      }
+      node_.set_log_time(now_ts_);
+      return;
+    }
+    if (ticks_ && ticks_->keyed(ev.channel)) {
+      ticks_->hold(ev.channel, ev.timestamp, std::vector<uint8_t>(p, p + ev.datalen));
+      return;
+    }
+    node_.publish_raw(ev.channel, ev.data, static_cast<size_t>(ev.datalen));
+    node_.drain();
+    if (n_inputs_ % 200 == 0) std::fprintf(stderr, "\rgpilot-replay: %lld input messages", static_cast<long long>(n_inputs_));
+  }
+
+  const ReplayOptions& o_;
+  const std::vector<std::string> chain_;
+  const std::set<std::string> inputs_, outputs_;
+  LogScan& scan_;
+  const std::map<std::string, Config> stage_config_;
+  std::unique_ptr<lcm::LogFile> out_;
+  int64_t eventnum_ = 0;
+  BusNode node_{"gpilot-replay", "memq://"};
+  std::vector<std::shared_ptr<void>> running_;
+  std::unique_ptr<ReplayTicks> ticks_;
+  std::unique_ptr<PairHold> pair_hold_;
+  std::map<std::string, std::vector<std::vector<uint8_t>>> produced_, recorded_;
+  int64_t now_ts_ = 0, n_events_ = 0, n_inputs_ = 0;
+  size_t next_init_ = 0;
+  bool configs_written_ = false;
+};
+
+int run_replay(const Config& config, bool config_given, const ReplayOptions& o) {
+  const std::vector<std::string> chain = parse_chain(o.stage_arg);
+  std::set<std::string> outputs, inputs;
+  for (const auto& s : chain)
+    for (const auto& ch : stages().at(s).outputs) outputs.insert(ch);
+  for (const auto& s : chain)
+    for (const auto& ch : stages().at(s).inputs)
+      if (!outputs.count(ch)) inputs.insert(ch);
+  // A stage replays with its own run's config unless --config or --set chose one.
+  LogScan scan = scan_log(o, chain, inputs, !config_given);
+  auto stage_config = stage_configs(chain, scan, config, config_given, o.in_path);
+  ChainReplay replay(o, chain, inputs, outputs, scan, std::move(stage_config));
+  replay.run();
+  const int differences = replay.report();
+  return o.check && differences ? 1 : 0;
+}
+
+}  // namespace
+}  // namespace gpilot
+
+int main(int argc, char** argv) {
+  using namespace gpilot;
+  ServiceCli cli("gpilot-replay",
+                 "Run a stage's code over an LCM log, faster than real time; write a log with the original inputs and\n"
+                 "the new outputs; with --check, print where the new outputs differ from the recorded ones.\n"
+                 "Stages: tracker (CAMERA, TRACKER_INIT -> USER_TRACK), hands (CAMERA, USER_TRACK -> HAND_OBS),\n"
+                 "decide (HAND_OBS -> GESTURE_CMD), flight (GESTURE_CMD, USER_TRACK, VEHICLE_STATE, AUTOPILOT,\n"
+                 "FLIGHT_CONTROL -> FLIGHT_SETPOINT: gpilot-flight's service with its timer fired at each recorded\n"
+                 "setpoint's time; the vehicle's states and what the autopilot said come from the log; alone, not in a chain), or a chain such as tracker,hands,decide.");
+  ReplayOptions o;
+  cli.app().add_option("log", o.in_path, "the recorded LCM log")->required();
+  cli.app().add_option("--stage", o.stage_arg, "stage or comma-separated chain: tracker, hands, decide, flight")->required();
+  cli.app().add_option("--out", o.out_path, "write the new log here");
+  cli.app().add_flag("--check", o.check, "compare the new outputs with the recorded ones (exit 1 on any difference)");
+  cli.app().add_option("--from", o.from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
+  cli.app().add_option("--to", o.to_s, "stop this many seconds after the log's first event (0 = the end)")->check(CLI::NonNegativeNumber);
+  cli.app().add_flag("--inputs-only", o.inputs_only, "the new log holds only the stages' inputs and outputs (small logs)");
+  cli.app().add_flag("--recorded-outputs", o.recorded_outputs,
+                     "the new log holds the recorded outputs and the stages' logged CONFIG, not the replay's: a cut of\n"
+                     "a live run, whose replay is then checked against what the live stages sent (tests/replay)");
+  cli.app().add_flag("--all-frames", o.all_frames,
+                     "give the stages every recorded frame (default: only those the live stages processed, i.e. whose\n"
+                     "USER_TRACK / HAND_OBS the log records; a log without those outputs gives every frame)");
+  return cli.run(argc, argv, [&](const Config& config) -> int { return run_replay(config, cli.config_given(), o); });
 }

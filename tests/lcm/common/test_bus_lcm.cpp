@@ -117,14 +117,31 @@ TEST(BusLcm, TruncatedImageReasonNamesTheType) {
             "CAMERA: 5 bytes do not decode as gpilot.image_t (truncated, malformed or another type)");
 }
 
-TEST(BusLcm, TimersRunFromTheLoop) {
+TEST(BusLcm, TimersRunFromTheLoopOnTheNodesClock) {
+  // GIVEN a node whose timer clock the test moves by hand, with a 10 ms timer
   BusNode node("timer", kUrl);
+  int64_t now = 1'000'000;
+  node.set_timer_clock([&] { return now; });
   int ticks = 0;
   node.every(0.01, [&] { ++ticks; });
-  const int64_t end = monotonic_utime() + 200'000;
-  while (monotonic_utime() < end) node.spin_once(50);
-  EXPECT_GE(ticks, 10);
-  EXPECT_LE(ticks, 21);
+  // One loop step after the clock moved by us: the ticks so far.
+  const auto after = [&](int64_t us) {
+    now += us;
+    node.spin_once(0);
+    return ticks;
+  };
+  // WHEN the loop turns without the clock moving THEN nothing fires
+  EXPECT_EQ(after(0), 0);
+  // WHEN 200 ms pass in steps of 10 ms, one loop step each THEN the timer fired 20 times
+  for (int i = 0; i < 20; ++i) after(10'000);
+  EXPECT_EQ(ticks, 20);
+  // AND a microsecond before its period ends it has not fired again; at the end it has
+  EXPECT_EQ(after(9'999), 20);
+  EXPECT_EQ(after(1), 21);
+  // AND after a 100 ms stall it fires once, not ten times to catch up, and keeps its period from there
+  EXPECT_EQ(after(100'000), 22);
+  EXPECT_EQ(after(9'999), 22);
+  EXPECT_EQ(after(1), 23);
 }
 
 TEST(BusLcm, BadUrlIsAClearError) {

@@ -24,6 +24,7 @@
 #include "child_process.hpp"
 #include "image_codec.hpp"
 #include "sequence.hpp"
+#include "face_cascade.hpp"
 #include "user_tracker.hpp"
 
 using namespace gpilot;
@@ -106,7 +107,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   EXPECT_EQ(tracks.size(), 16u);
   EXPECT_EQ(tracks.count(100), 0u);
   // and the boxes are the core's over the good frames only (the bad ones did not advance the track).
-  UserTracker core{TrackerParams{}};
+  UserTracker core{TrackerParams{}, load_face_cascade(TrackerParams{})};
   core.set_box(init);
   for (int64_t s = 0; s < 16; ++s) {
     const TrackOutput want = core.process(frames[static_cast<size_t>(s)]);
@@ -146,7 +147,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   core.reset();
   TrackOutput want;
   int64_t seq = 16;
-  for (; seq < 16 + FaceDetector(TrackerParams{}).scan_tiles(face_frame.size()); ++seq) {
+  for (; seq < 16 + FaceDetector(TrackerParams{}, load_face_cascade(TrackerParams{})).scan_tiles(face_frame.size()); ++seq) {
     bus.publish("CAMERA", mat_to_image(face_frame, wall_utime(), seq));
     ASSERT_TRUE(spin_until([&] { return tracks.count(seq) > 0; }, 10000)) << "no USER_TRACK for the face frame " << seq;
     want = core.process(face_frame);
@@ -184,8 +185,8 @@ TEST(TrackerService, RefusedFacesAreCountedInHealth) {
   stage.bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
   ASSERT_TRUE(stage.wait_for_health()) << "no HEALTH from gpilot-tracker";
   // WHEN two whole scans' worth of frames come, one at a time (raw BGR: the core below sees the same pixels)
-  UserTracker core{TrackerParams{}};
-  const int frames = 2 * FaceDetector(TrackerParams{}).scan_tiles(frame.size());
+  UserTracker core{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  const int frames = 2 * FaceDetector(TrackerParams{}, load_face_cascade(TrackerParams{})).scan_tiles(frame.size());
   for (int64_t seq = 0; seq < frames; ++seq) {
     stage.bus.publish("CAMERA", mat_to_image(frame, wall_utime(), seq));
     ASSERT_TRUE(stage.spin_until([&] { return tracks.count(seq) > 0; }, 5000)) << "no USER_TRACK for seq " << seq;
@@ -298,7 +299,7 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
     EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 1) << "--all-frames found no difference with frames skipped";
   }
   // The core in-process over the same frames says the same.
-  UserTracker core{TrackerParams{}};
+  UserTracker core{TrackerParams{}, load_face_cascade(TrackerParams{})};
   core.set_box(cv::Rect2d(261, 48, 39, 65));
   for (const auto& [seq, got] : tracks) {
     // The frame as the stage saw it: through the JPEG codec.

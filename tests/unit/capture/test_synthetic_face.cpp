@@ -7,6 +7,7 @@
 
 #include "scenario.hpp"
 #include "synthetic_world.hpp"
+#include "tracker/face_cascade.hpp"
 #include "tracker/face_detector.hpp"
 
 namespace gpilot {
@@ -27,7 +28,7 @@ class SyntheticFace : public ::testing::Test {
 
 TEST_F(SyntheticFace, HaarFindsTheFaceInEveryPoseOfTheTour) {
   const SyntheticWorld world(SyntheticParams{}, Scenario::load("tour"), 3);
-  FaceDetector detector{TrackerParams{}};
+  FaceDetector detector{TrackerParams{}, load_face_cascade(TrackerParams{})};
   for (double t : world.scenario().key_times()) {
     const SyntheticFrame f = world.render(t, 0, std::nullopt);
     SCOPED_TRACE(std::to_string(t) + " s, " + gesture_name(f.truth.gesture));
@@ -43,7 +44,7 @@ TEST_F(SyntheticFace, HaarFindsTheFaceInEveryPoseOfTheTour) {
 
 TEST_F(SyntheticFace, HaarFindsTheFaceFromTwoToFourMetres) {
   const SyntheticWorld world(SyntheticParams{}, Scenario::load("idle"), 3);
-  FaceDetector detector{TrackerParams{}};
+  FaceDetector detector{TrackerParams{}, load_face_cascade(TrackerParams{})};
   for (double distance : {2.0, 4.0}) {
     SCOPED_TRACE(std::to_string(distance) + " m");
     const SyntheticFrame f = world.render(1.0, 0, CameraPose{3.0 - distance, 0.0, -1.5, 0.0});

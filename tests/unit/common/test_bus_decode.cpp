@@ -1,7 +1,8 @@
 // BusNode on hostile bytes, in-process (memq://, no network): one datagram must never stop a process.
 // LCM 1.3.1's generated decoders throw on a string length of 0 or -1 (std::length_error from
 // basic_string::_M_replace): caught and rejected with the reason; trailing bytes after a whole message
-// are rejected; a handler that throws rejects its message and the node keeps handling the next ones.
+// are rejected; a handler that refuses its message (InputError) rejects it, a handler that fails otherwise
+// (a defect) is logged and puts the process in ERROR; either way the node keeps handling the next ones.
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 
 #include "bus_node.hpp"
 #include "gpilot/autopilot_t.hpp"
@@ -116,24 +118,28 @@ TEST_F(BusDecode, TrailingBytesAreNotThisMessage) {
                                                    std::to_string(c.size() - 2) + " bytes and trailing bytes");
 }
 
-TEST(BusHandlers, AHandlerThatThrowsRejectsItsMessageAndTheNextOneIsHandled) {
+TEST(BusHandlers, AHandlerThatRefusesItsInputRejectsItAndTheNextOneIsHandled) {
+  // GIVEN a typed and a raw handler that refuse some messages with an InputError (the message's fault)
   BusNode node("gpilot-test", "memq://");
   int handled = 0;
   node.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t& m, int64_t) {
-    if (m.seq == 1) throw std::runtime_error("boom");
+    if (m.seq == 1) throw InputError("seq 1 is not usable");
     ++handled;
   });
   int raw = 0;
   node.subscribe_raw("RAW", [&](const std::string&, const void*, size_t size, int64_t) {
-    if (size == 1) throw std::out_of_range("raw boom");
+    if (size == 1) throw InputError("one byte is not a record");
     ++raw;
   });
+  node.set_state(health_t::STATE_OK, "running");
+  // WHEN one message of each is refused and the next one is not
   gesture_cmd_t cmd{};
   cmd.seq = 1;
   node.publish("GESTURE_CMD", cmd);
   node.drain();
+  // THEN the refused one is a counted rejection with its reason
   EXPECT_EQ(node.stats().rejected_count(), 1);
-  EXPECT_EQ(node.stats().last_reject_reason(), "GESTURE_CMD: the handler failed on this message: boom");
+  EXPECT_EQ(node.stats().last_reject_reason(), "GESTURE_CMD: seq 1 is not usable");
   cmd.seq = 2;
   node.publish("GESTURE_CMD", cmd);
   node.drain();
@@ -143,7 +149,59 @@ TEST(BusHandlers, AHandlerThatThrowsRejectsItsMessageAndTheNextOneIsHandled) {
   node.publish_raw("RAW", two, 2);
   node.drain();
   EXPECT_EQ(raw, 1);
-  EXPECT_EQ(node.stats().last_reject_reason(), "RAW: the handler failed on this message: raw boom");
+  EXPECT_EQ(node.stats().rejected_count(), 2);
+  EXPECT_EQ(node.stats().last_reject_reason(), "RAW: one byte is not a record");
+  // AND the process is not at fault: no failure, HEALTH keeps the stage's state
+  EXPECT_EQ(node.stats().failure_count(), 0);
+  const health_t h = node.stats().report(1'000'000, "gpilot-test", 1);
+  EXPECT_EQ(h.state, health_t::STATE_OK);
+  EXPECT_EQ(h.state_detail, "running");
+}
+
+TEST(BusHandlers, AHandlerThatFailsIsLoggedAndPutsTheProcessInError) {
+  // GIVEN handlers with defects: a logic error, an OpenCV assertion, an allocation failure, a raw handler's
+  BusNode node("gpilot-test", "memq://");
+  int handled = 0;
+  node.subscribe<gesture_cmd_t>("GESTURE_CMD", [&](const gesture_cmd_t& m, int64_t) {
+    if (m.seq == 1) throw std::logic_error("Dsst::restore before init");
+    if (m.seq == 2) throw cv::Exception(cv::Error::StsAssert, "a.size == b.size", "f", "file.cpp", 1);
+    if (m.seq == 3) throw std::bad_alloc();
+    ++handled;
+  });
+  node.subscribe_raw("RAW", [&](const std::string&, const void*, size_t, int64_t) {
+    throw std::out_of_range("vector::at");  // a std::logic_error too
+  });
+  node.set_state(health_t::STATE_OK, "running");
+  // WHEN each fails on its message, and a good message follows
+  ::testing::internal::CaptureStderr();
+  for (int64_t seq = 1; seq <= 4; ++seq) {
+    gesture_cmd_t cmd{};
+    cmd.seq = seq;
+    node.publish("GESTURE_CMD", cmd);
+    node.drain();
+  }
+  const uint8_t one = 1;
+  node.publish_raw("RAW", &one, 1);
+  node.drain();
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  // THEN the process keeps handling messages, and none of the failures is counted as a bad message
+  EXPECT_EQ(handled, 1);
+  EXPECT_EQ(node.stats().rejected_count(), 0);
+  EXPECT_EQ(node.stats().failure_count(), 4);
+  // AND each failure (the 1st, 2nd, 4th: the log is thinned) is logged at error level with what was thrown
+  EXPECT_NE(log.find(": error: the handler of GESTURE_CMD failed (1 so far): Dsst::restore before init"), std::string::npos) << log;
+  EXPECT_NE(log.find("(2 so far)"), std::string::npos) << log;
+  EXPECT_NE(log.find("a.size == b.size"), std::string::npos) << log;
+  EXPECT_EQ(log.find("(3 so far)"), std::string::npos) << log;
+  EXPECT_NE(log.find(": error: the handler of RAW failed (4 so far): vector::at"), std::string::npos) << log;
+  // AND HEALTH says ERROR with the last failure, even after the stage sets its state again
+  node.set_state(health_t::STATE_OK, "tracking");
+  const health_t h = node.stats().report(1'000'000, "gpilot-test", 1);
+  EXPECT_EQ(h.state, health_t::STATE_ERROR);
+  EXPECT_EQ(h.state_detail, "4 failures of this process, the last: RAW: vector::at; tracking");
+  // AND a process on its way out says so
+  node.set_state(health_t::STATE_STOPPING, "stopping");
+  EXPECT_EQ(node.stats().report(2'000'000, "gpilot-test", 1).state, health_t::STATE_STOPPING);
 }
 
 namespace {

@@ -50,5 +50,24 @@ TEST(StageStats, ReportCountsRatesAndPercentiles) {
   EXPECT_EQ(h2.messages_in, 30);
 }
 
+TEST(StageStats, AFailureMakesTheStateErrorUntilTheProcessStops) {
+  // GIVEN a stage that says it is tracking
+  StageStats s;
+  s.set_state(health_t::STATE_OK, "tracking");
+  EXPECT_EQ(s.report(1'000'000, "gpilot-x", 7).state, health_t::STATE_OK);
+  // WHEN its process fails twice
+  EXPECT_EQ(s.failed("CAMERA: bad_alloc"), 1);
+  EXPECT_EQ(s.failed("CAMERA: vector::at"), 2);
+  // THEN the report says ERROR with the count and the last failure, whatever the stage sets after
+  s.set_state(health_t::STATE_OK, "tracking");
+  const health_t h = s.report(2'000'000, "gpilot-x", 7);
+  EXPECT_EQ(h.state, health_t::STATE_ERROR);
+  EXPECT_EQ(h.state_detail, "2 failures of this process, the last: CAMERA: vector::at; tracking");
+  EXPECT_EQ(h.rejected, 0);
+  // AND stopping is still reported as stopping
+  s.set_state(health_t::STATE_STOPPING, "stopping");
+  EXPECT_EQ(s.report(3'000'000, "gpilot-x", 7).state, health_t::STATE_STOPPING);
+}
+
 }  // namespace
 }  // namespace gpilot

@@ -139,6 +139,28 @@ TEST_F(RulesTest, AForearmHangingAtTheTorsosEdgeIsNotAHandInFront) {
   EXPECT_EQ(r.upright_dropped, 0);
 }
 
+TEST_F(RulesTest, AfterThreeHangingForearmsAlg2GivesUpAndSaysSo) {
+  // GIVEN three forearms 8 x 54 at x 126, 137 and 148 (y 150..203), each its own skin component, each within w/5
+  // = 16 px of p_bc.x = 140 and reaching below the body centre (y 180): Alg. 2 takes one, drops it as hanging,
+  // looks again, three times (kMaxDroppedCandidates)
+  cv::Mat frame(kImage, CV_8UC3, kBlue);
+  for (int x : {126, 137, 148}) cv::rectangle(frame, cv::Rect(x, 150, 8, 54), kSkin, cv::FILLED);
+  // WHEN the detector looks
+  const HandResult r = on_frame(frame);
+  // THEN it gives up on the frame: no hand, no skin counts (as HAND_OBS had them), and the three dropped counted
+  EXPECT_EQ(r.kind, HandKind::None);
+  EXPECT_EQ(r.hand_skin, 0);
+  EXPECT_EQ(r.skin_inside, 0);
+  EXPECT_EQ(r.upright_dropped, 3);
+  EXPECT_EQ(r.geometry.box, cv::Rect(100, 100, 80, 160));
+  // AND with two of them it takes neither and has looked at both
+  frame.setTo(kBlue);
+  for (int x : {126, 148}) cv::rectangle(frame, cv::Rect(x, 150, 8, 54), kSkin, cv::FILLED);
+  const HandResult two = on_frame(frame);
+  EXPECT_EQ(two.kind, HandKind::None);
+  EXPECT_EQ(two.upright_dropped, 2);
+}
+
 TEST_F(RulesTest, ATorsoSizedSkinRegionIsTheShirtNotAHandInFront) {
   // GIVEN skin 40 x 40 at x 120..159, y 140..179 inside the box (an orange shirt the table calls skin): 1600 px,
   // 4 hand squares of 20 x 20 exactly -> kept at 4, dropped when one more row is skin (1640 > 1600)

@@ -20,7 +20,7 @@ namespace {
 const cv::Scalar kWall(118, 160, 205), kHand(90, 120, 170), kCheek(40, 48, 164), kBlue(200, 60, 20), kOrange(58, 90, 184);
 
 bool skin(SkinAdapter& a, const cv::Scalar& c) {
-  return a.classifier().is_skin(static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]));
+  return a.classifier_for_frame().is_skin(static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]));
 }
 
 struct SkinAdapterTest : ::testing::Test {
@@ -72,7 +72,7 @@ TEST_F(SkinAdapterTest, AFaceBoxOnBackgroundTeachesNothing) {
   a.learn_user(frame, cv::Rect2f(100, 50, 60, 80));  // the table gives blue P ~ 0: not learnt as skin
   a.learn_user(frame, cv::Rect2f(-500, -500, 10, 10));  // off the image
   EXPECT_EQ(a.user_samples(), 0);
-  EXPECT_EQ(a.classifier().mask_table(), SkinClassifier(model, params.threshold).mask_table());
+  EXPECT_EQ(a.classifier_for_frame().mask_table(), SkinClassifier(model, params.threshold).mask_table());
 }
 
 TEST_F(SkinAdapterTest, ResetGivesTheTableBackAndTheSameInputsGiveTheSameModel) {
@@ -83,10 +83,10 @@ TEST_F(SkinAdapterTest, ResetGivesTheTableBackAndTheSameInputsGiveTheSameModel) 
     s->learn_user(frame, cv::Rect2f(100, 50, 60, 80));
     s->learn_scene(frame, cv::Rect(90, 40, 80, 160));
   }
-  EXPECT_EQ(a.classifier().mask_table(), b.classifier().mask_table());
+  EXPECT_EQ(a.classifier_for_frame().mask_table(), b.classifier_for_frame().mask_table());
   a.reset();
   EXPECT_EQ(a.user_samples() + a.scene_samples(), 0);
-  EXPECT_EQ(a.classifier().mask_table(), SkinClassifier(model, params.threshold).mask_table());
+  EXPECT_EQ(a.classifier_for_frame().mask_table(), SkinClassifier(model, params.threshold).mask_table());
 }
 
 TEST_F(SkinAdapterTest, AShirtTheTableCallsSkinIsTheShirtOnceTheUsersSkinIsKnown) {
@@ -154,4 +154,27 @@ TEST(SkinModelLikelihoods, SurviveTheFileAndAnOldFileWithoutThemIsRefusedOnlyFor
   p.adapt.enabled = false;
   EXPECT_NO_THROW(SkinAdapter(p, old));
   std::filesystem::remove(path);
+}
+
+TEST_F(SkinAdapterTest, ReadingTheClassifierCountsNoFrameAndRebuildsNothing) {
+  SkinAdapter a(params, model);
+  cv::Mat frame(240, 320, CV_8UC3, kWall);
+  const cv::Rect search(100, 40, 120, 160);
+  frame(search).setTo(kHand);
+  // GIVEN the wall learnt as scene and a frame judged with it: the first state is built at once
+  a.learn_scene(frame, search);
+  ASSERT_FALSE(a.classifier_for_frame().is_skin(118, 160, 205));
+  // WHEN the scene is forgotten in favour of a wall of the hand's colour (the state changes) and the classifier is
+  // read more times than adapt.rebuild_frames
+  a.reset();
+  frame.setTo(kWall);
+  a.learn_scene(frame, search);
+  a.classifier_for_frame();  // a track's first state: built at once
+  cv::Mat hand_wall(240, 320, CV_8UC3, kHand);
+  a.learn_scene(hand_wall, search);
+  const std::vector<uint8_t> built = a.classifier().mask_table();
+  for (int i = 0; i < 3 * params.adapt.rebuild_frames; ++i) EXPECT_EQ(a.classifier().mask_table(), built);
+  // THEN nothing was rebuilt; the frames that follow rebuild it after adapt.rebuild_frames of them
+  for (int i = 1; i < params.adapt.rebuild_frames; ++i) EXPECT_EQ(a.classifier_for_frame().mask_table(), built) << i;
+  EXPECT_NE(a.classifier_for_frame().mask_table(), built);
 }

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "body_fit.hpp"
+#include "face_cascade.hpp"
 #include "face_detector.hpp"
 #include "known_scene.hpp"
 #include "user_tracker.hpp"
@@ -203,7 +204,7 @@ TEST(BodyFit, FaceOnAPosterOrAShirtIsRefused) {
 
 TEST(BodyFit, ThePhotographsPeopleAreAccepted) {
   TrackerParams tp;
-  FaceDetector faces(tp);
+  FaceDetector faces(tp, load_face_cascade(tp));
   for (const char* name : {"messi5.jpg", "astronaut.png"}) {
     const cv::Mat img = photo(name);
     ASSERT_FALSE(img.empty()) << name;
@@ -250,9 +251,9 @@ TEST(UserTrackerBodyCheck, FaceAtTheBottomEdgeStartsNoTrack) {
   cv::Mat frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
   astronaut(360)(cv::Rect(0, 0, 360, 120)).copyTo(frame(cv::Rect(140, 240, 360, 120)));
   const TrackerParams p;
-  const int scan = FaceDetector(p).scan_tiles(frame.size());
+  const int scan = FaceDetector(p, load_face_cascade(p)).scan_tiles(frame.size());
   // WHEN the tracker searches for two whole scans of the frame
-  UserTracker t(p);
+  UserTracker t(p, load_face_cascade(p));
   const Searched s = search(t, frame, 2 * scan);
   // THEN no track: her face is found and refused (counted) on each scan, and the search goes on
   EXPECT_EQ(s.out.status, TrackStatus::kSearching);
@@ -264,7 +265,7 @@ TEST(UserTrackerBodyCheck, FaceAtTheBottomEdgeStartsNoTrack) {
   TrackerParams off = p;
   off.body_fit.min_in_frame = 0;
   off.body_fit.min_torso_in_frame = 0;
-  UserTracker u(off);
+  UserTracker u(off, load_face_cascade(off));
   EXPECT_EQ(search(u, frame, scan).out.status, TrackStatus::kTracking);
 }
 
@@ -283,9 +284,9 @@ TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
   // GIVEN the poster and the astronaut
   const cv::Mat frame = poster_and_astronaut();
   const TrackerParams p;
-  const int scan = FaceDetector(p).scan_tiles(frame.size());
+  const int scan = FaceDetector(p, load_face_cascade(p)).scan_tiles(frame.size());
   // WHEN the tracker searches
-  UserTracker t(p);
+  UserTracker t(p, load_face_cascade(p));
   const Searched s = search(t, frame, 2 * scan);
   std::printf("poster: %d frames, %d refused (%lld no body colour, %lld off the frame, %lld no torso)\n", s.frames,
               s.refused_frames, static_cast<long long>(t.refusals(FaceRefusal::kNoBodyColour)),
@@ -300,7 +301,7 @@ TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
   // AND without the evidence check the printed face (the larger, found first) starts the track
   TrackerParams off = p;
   off.body_fit.min_separation = 0;
-  UserTracker u(off);
+  UserTracker u(off, load_face_cascade(off));
   const Searched o = search(u, frame, scan);
   ASSERT_EQ(o.out.status, TrackStatus::kTracking);
   ASSERT_TRUE(o.out.face.has_value());
@@ -313,7 +314,7 @@ TEST(UserTrackerBodyCheck, TheNextFaceOfTheSameSearchIsTriedAfterARefusal) {
   TrackerParams p;
   p.face.scan_slice_pixels = 0;
   const cv::Mat frame = poster_and_astronaut();
-  UserTracker t(p);
+  UserTracker t(p, load_face_cascade(p));
   const TrackOutput out = t.process(frame);
   ASSERT_EQ(out.status, TrackStatus::kTracking);
   EXPECT_EQ(out.refused, FaceRefusal::kNoBodyColour);  // the printed face, refused on this frame
@@ -321,7 +322,7 @@ TEST(UserTrackerBodyCheck, TheNextFaceOfTheSameSearchIsTriedAfterARefusal) {
   ASSERT_TRUE(out.face.has_value());
   EXPECT_GT(out.face->x, 620.0) << *out.face;
   // The search's order: the printed face (larger) first.
-  const auto faces = FaceDetector(p).detect_all(frame);
+  const auto faces = FaceDetector(p, load_face_cascade(p)).detect_all(frame);
   ASSERT_GE(faces.size(), 2u);
   EXPECT_LT(faces[0].face.x, 560.0);
   EXPECT_GE(faces[0].face.area(), faces[1].face.area());

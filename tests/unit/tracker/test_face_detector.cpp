@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "face_cascade.hpp"
 #include "face_detector.hpp"
 
 namespace gpilot {
@@ -32,7 +33,7 @@ TEST(BodyFromFace, UsesTheHeadBodyRatios) {
 
 TEST(FaceDetector, FindsMessisFaceNotHisShirt) {
   // GIVEN messi5.jpg: face (checked by eye) about x 226..265, y 93..132; the shirt and crowd next to it.
-  FaceDetector d{TrackerParams{}};
+  FaceDetector d{TrackerParams{}, load_face_cascade(TrackerParams{})};
   const auto r = d.detect(photo("messi5.jpg"));
   ASSERT_TRUE(r.has_value());
   // THEN the face box is on the face
@@ -48,7 +49,7 @@ TEST(FaceDetector, FindsMessisFaceNotHisShirt) {
 
 TEST(FaceDetector, FindsTheAstronautAndHerUpperBody) {
   // GIVEN astronaut.png: face about x 180..270, y 70..160; orange suit below down to the image bottom.
-  FaceDetector d{TrackerParams{}};
+  FaceDetector d{TrackerParams{}, load_face_cascade(TrackerParams{})};
   const auto r = d.detect(photo("astronaut.png"));
   ASSERT_TRUE(r.has_value());
   EXPECT_TRUE(contains(r->face, {225, 115})) << r->face;
@@ -65,7 +66,7 @@ TEST(FaceDetector, ScanStepsFindTheFaceWithinTheBudget) {
   TrackerParams p;
   p.face.scan_slice_pixels = 30000;
   const cv::Mat img = photo("messi5.jpg");
-  FaceDetector whole(p), scan(p);
+  FaceDetector whole(p, load_face_cascade(p)), scan(p, load_face_cascade(p));
   const auto ref = whole.detect(img);
   ASSERT_TRUE(ref.has_value());
   const int tiles = scan.scan_tiles(img.size());
@@ -85,7 +86,7 @@ TEST(FaceDetector, ScanStepsFindTheFaceWithinTheBudget) {
   EXPECT_GT(inter / (found->face.area() + ref->face.area() - inter), 0.7) << found->face << " vs " << ref->face;
   // scan_slice_pixels 0: the whole frame in one step.
   p.face.scan_slice_pixels = 0;
-  FaceDetector at_once(p);
+  FaceDetector at_once(p, load_face_cascade(p));
   const auto one = at_once.scan_step(img);
   ASSERT_TRUE(one.has_value());
   EXPECT_EQ(one->face, ref->face);
@@ -98,7 +99,7 @@ TEST(FaceDetector, WindowStepsStayWithinTheBudget) {
   TrackerParams p;  // face.upscale 2, scan_slice_pixels 60000
   const cv::Mat img = photo("messi5.jpg");
   const cv::Rect roi(150, 40, 200, 200);  // 40000 px, enlarged 160000: 200000 px searched at once
-  FaceDetector whole(p), steps(p);
+  FaceDetector whole(p, load_face_cascade(p)), steps(p, load_face_cascade(p));
   const auto ref = whole.detect(img, roi);
   ASSERT_TRUE(ref.has_value());
   std::vector<FaceDetection> found;
@@ -129,7 +130,7 @@ TEST(FaceDetector, AWindowSearchBoundedAboveTakesNoLargerFace) {
   TrackerParams p;
   const cv::Mat img = photo("messi5.jpg");
   const cv::Rect small(200, 70, 90, 90);
-  FaceDetector d(p);
+  FaceDetector d(p, load_face_cascade(p));
   const auto any = d.window_step_all(img, small);
   ASSERT_FALSE(any.empty());
   const double w = any.front().face.width;
@@ -141,7 +142,7 @@ TEST(FaceDetector, AWindowSearchBoundedAboveTakesNoLargerFace) {
   EXPECT_DOUBLE_EQ(d.last_step_pixels(), 90.0 * 90.0 * 4);  // 15 px: only the enlarged copy
   // Over the budget: scanned over calls; a bound below the face finds nothing in a whole cycle of the scan.
   const cv::Rect roi(150, 40, 200, 200);
-  FaceDetector bounded(p), open(p);
+  FaceDetector bounded(p, load_face_cascade(p)), open(p, load_face_cascade(p));
   bool found_bounded = false, found_open = false;
   for (int calls = 0; calls < 20; ++calls) {
     found_bounded = found_bounded || !bounded.window_step_all(img, roi, 0.75 * w).empty();
@@ -159,7 +160,7 @@ TEST(FaceDetector, EnlargedSearchLooksOnlyForTheFacesTheCallerTakes) {
   cv::Mat small;
   cv::resize(photo("messi5.jpg"), small, cv::Size(), 0.4, 0.4, cv::INTER_AREA);  // the face about 16 px
   const cv::Rect roi(60, 10, 80, 80);
-  FaceDetector d{TrackerParams{}};
+  FaceDetector d{TrackerParams{}, load_face_cascade(TrackerParams{})};
   const auto any = d.detect(small, roi);
   ASSERT_TRUE(any.has_value());
   EXPECT_LT(any->face.width, 20.0) << any->face;
@@ -180,7 +181,7 @@ TEST(FaceDetector, ReCheckFindsASmallFaceAndTakesNonsenseSizes) {
   cv::Mat small;
   cv::resize(photo("messi5.jpg"), small, cv::Size(), 0.4, 0.4, cv::INTER_AREA);
   const cv::Rect roi(60, 10, 80, 80);
-  FaceDetector d{TrackerParams{}};
+  FaceDetector d{TrackerParams{}, load_face_cascade(TrackerParams{})};
   const auto any = d.detect(small, roi);
   ASSERT_TRUE(any.has_value());
   const auto face = d.recheck(small, roi, any->face.width, 0.7);
@@ -199,7 +200,7 @@ TEST(FaceDetector, FindsNoFaceOutsideTheSkier) {
   // GIVEN COCO 000000000785.jpg, one skier whose person box is [280.79, 44.73, 218.7, 346.68] (COCO val2017
   // annotations, CC BY 4.0). Her face is small and partly covered: the cascade may miss it, but anything it
   // reports must be on her.
-  FaceDetector d{TrackerParams{}};
+  FaceDetector d{TrackerParams{}, load_face_cascade(TrackerParams{})};
   const auto r = d.detect(photo("000000000785.jpg"));
   if (r) {
     const cv::Rect2d person(280.79, 44.73, 218.7, 346.68);
@@ -211,7 +212,7 @@ TEST(FaceDetector, DownscaledSearchFindsTheSameFace) {
   TrackerParams p;
   p.face.downscale = 2.0;
   p.face.min_face_px = 16;
-  FaceDetector d(p);
+  FaceDetector d(p, load_face_cascade(p));
   const auto r = d.detect(photo("astronaut.png"));
   ASSERT_TRUE(r.has_value());
   EXPECT_TRUE(contains(r->face, {225, 115})) << r->face;
@@ -220,11 +221,11 @@ TEST(FaceDetector, DownscaledSearchFindsTheSameFace) {
 TEST(FaceDetector, MissingCascadeIsAClearError) {
   TrackerParams p;
   p.face.cascade = "/nonexistent/cascade.xml";
-  EXPECT_THROW(FaceDetector{p}, std::runtime_error);
+  EXPECT_THROW(load_face_cascade(p), std::runtime_error);
 }
 
 TEST(FaceDetector, EmptyFrameFindsNothing) {
-  FaceDetector d{TrackerParams{}};
+  FaceDetector d{TrackerParams{}, load_face_cascade(TrackerParams{})};
   EXPECT_FALSE(d.detect(cv::Mat()).has_value());
 }
 

@@ -10,6 +10,7 @@
 
 #include "capture/synthetic_params.hpp"
 #include "capture/synthetic_world.hpp"
+#include "face_cascade.hpp"
 #include "face_detector.hpp"
 #include "image_codec.hpp"
 #include "metrics.hpp"
@@ -27,7 +28,7 @@ struct AtDistance {
 std::vector<AtDistance> faces_by_distance(const TrackerParams& tp) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
-  FaceDetector faces(tp);
+  FaceDetector faces(tp, load_face_cascade(tp));
   std::vector<AtDistance> out;
   for (double d = 3.0; d <= 10.01; d += 0.5) {
     const SyntheticFrame f = world.render(1.0, 25, CameraPose{3.0 - d, 0.0, -1.5, 0.0});
@@ -85,7 +86,7 @@ TEST(TrackerRange, TheReCheckFindsAFarFaceInItsWindowEnlarged) {
   const TrackerParams with;
   TrackerParams without;
   without.face.recheck_small_face_px = 0;
-  FaceDetector enlarged(with), as_before(without);
+  FaceDetector enlarged(with, load_face_cascade(with)), as_before(without, load_face_cascade(without));
   int cases = 0, found = 0, found_before = 0;
   double worst_size = 0;
   for (double d = 5.0; d <= 10.01; d += 0.5)
@@ -116,8 +117,8 @@ TEST(TrackerRange, AUserAtEightMetresIsFoundByTheScanAndTracked) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
   const TrackerParams tp;
-  UserTracker tracker(tp);
-  const int scan = FaceDetector(tp).scan_tiles(cv::Size(sp.width, sp.height));
+  UserTracker tracker(tp, load_face_cascade(tp));
+  const int scan = FaceDetector(tp, load_face_cascade(tp)).scan_tiles(cv::Size(sp.width, sp.height));
   int found_at = -1;
   double worst = 1.0;
   for (int i = 0; i < scan + 100; ++i) {
@@ -144,7 +145,7 @@ TEST(TrackerRange, AUserAtEightMetresIsFoundByTheScanAndTracked) {
 TEST(TrackerRange, AFarUsersBoxKeepsItsWidthThroughTheReChecks) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("far"), 1);
-  UserTracker tracker{TrackerParams{}};
+  UserTracker tracker{TrackerParams{}, load_face_cascade(TrackerParams{})};
   int tracked = 0;
   double widest = 0, narrowest = 10;
   for (int i = 0; i < 40 * sp.fps; ++i) {
