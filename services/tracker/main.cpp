@@ -2,15 +2,23 @@
 // Reads CAMERA (image_t) and TRACKER_INIT (tracker_init_t); writes USER_TRACK (user_track_t, one per
 // accepted frame, with that frame's seq and utime) and HEALTH. A frame that does not decode or that the
 // tracker cannot use is rejected (counted in HEALTH) and does not advance the track.
+#include <memory>
+
 #include "service_cli.hpp"
 #include "tracker_service.hpp"
 
 int main(int argc, char** argv) {
   gpilot::ServiceCli cli("gpilot-tracker",
-                         "Haar face search, body box by head-body ratio, DSST tracking with PSR confidence.\n"
+                         "Haar face search, body box by head-body ratio, DSST tracking with PSR confidence;\n"
+                         "with tracker.person.enabled, BlazePose's person detector finds the user without a face too.\n"
                          "CAMERA + TRACKER_INIT in, USER_TRACK out.");
-  return cli.run_node(argc, argv, [](const gpilot::Config& config, gpilot::BusNode& node) {
-    const auto stage = gpilot::start_tracker_service(config, node);
+  // The cascade and the person detector's model are loaded before the bus starts: a missing file is named, status 2.
+  std::unique_ptr<gpilot::UserTracker> tracker;
+  cli.before_bus([&](const gpilot::Config& config) {
+    tracker = std::make_unique<gpilot::UserTracker>(config.section<gpilot::TrackerParams>("tracker"));
+  });
+  return cli.run_node(argc, argv, [&](const gpilot::Config& config, gpilot::BusNode& node) {
+    const auto stage = gpilot::start_tracker_service(config, node, std::move(tracker));
     node.run();
     return 0;
   });
