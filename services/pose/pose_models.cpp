@@ -62,11 +62,16 @@ std::string pose_landmark_path(const PoseParams& params) {
 
 PoseModels PoseModels::load(const PoseParams& params) { return load(pose_detector_path(params), pose_landmark_path(params)); }
 
+PoseNet PoseModels::load_detector(const std::string& detector_path) {
+  PoseNet n = read_net(detector_path, "person detector");
+  find_outputs(n, "person detector", kDetectorInputSize,
+               {{size_t{kDetectorAnchors} * kDetectorBoxValues, "box"}, {size_t{kDetectorAnchors}, "score"}});
+  return n;
+}
+
 PoseModels PoseModels::load(const std::string& detector_path, const std::string& landmark_path) {
   PoseModels m;
-  m.detector = read_net(detector_path, "person detector");
-  find_outputs(m.detector, "person detector", kDetectorInputSize,
-               {{size_t{kDetectorAnchors} * kDetectorBoxValues, "box"}, {size_t{kDetectorAnchors}, "score"}});
+  m.detector = load_detector(detector_path);
   m.landmark = read_net(landmark_path, "pose landmark");
   find_outputs(m.landmark, "pose landmark", kLandmarkInputSize,
                {{size_t{kLandmarkPoints} * kLandmarkValues, "landmark"}, {size_t{1}, "pose flag"}});

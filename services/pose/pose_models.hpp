@@ -42,6 +42,8 @@ struct PoseModels {
   static PoseModels load(const PoseParams& params);
   // Explicit files.
   static PoseModels load(const std::string& detector_path, const std::string& landmark_path);
+  // The person detector alone (the tracker's person search), checked as load() checks it.
+  static PoseNet load_detector(const std::string& detector_path);
 };
 
 // The files load(params) reads.

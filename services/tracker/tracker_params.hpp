@@ -220,10 +220,70 @@ struct BodyFitParams {
   }
 };
 
+// The person search (issue 30): BlazePose's person detector (services/pose, models/pose/pose_detection.onnx)
+// finds the user without their face, to start a track and to take a lost user back. Off: the face search
+// alone, as before. A run of the detector costs 20-40 ms (one core), so it runs on one searching frame in
+// every_frames (the budget), each run on one region of the frame letterboxed to 224 px, and the search is
+// spread over runs: while LOST the last box grown more with each run without the user; SEARCHING (and LOST
+// once the grown box covers the frame), the whole frame, then tiles of tile_share of its short side in turn
+// (a person 6 m or more from a 640x480 camera is too small in the whole frame for the detector: found to 5 m
+// there, to 10 m in a 300 px region). HEALTH says how far it got.
+struct PersonSearchParams {
+  bool enabled = false;                    //!< tracker.person.enabled: the person detector searches too
+  std::string models_dir = "models/pose";  //!< folder of pose_detection.onnx (relative: project root)
+  double score_threshold = 0.5;            //!< detector score a person needs (MediaPipe 0.5)
+  int every_frames = 5;                    //!< budget: the detector runs on one searching frame in this many
+  double tile_share = 0.6;                 //!< the whole-frame search's tiles: squares of this x the frame's short side
+  // While LOST the detector looks at the last box grown by region_growth x its height each side, and
+  // region_growth_step more after each run that did not take the user back; a new user's confirming runs look
+  // at their box grown by region_growth.
+  double region_growth = 1.0;
+  double region_growth_step = 1.0;
+  // A new user (nobody remembered): the same person (body boxes overlapping by start_min_iou at least) found
+  // by start_detections runs in a row, upright (the body's axis within max_tilt_deg of vertical), shoulders
+  // and hips in the frame, and their body box checked against the image as a face's is (body_fit).
+  int start_detections = 3;
+  double start_min_iou = 0.3;
+  double max_tilt_deg = 30.0;
+  // The face the detection implies, for the head-body ratios, the torso sample and body_fit (the detector's own
+  // face box does not follow the person's size): face_in_body x the distance from the hips to the full-body
+  // scale point wide and high, its centre face_above_shoulders face widths above the shoulders' midpoint. The
+  // synthetic user at 3-10 m: 0.165-0.235 (mean 0.20) and 0.85-1.13 (mean 1.0), test PersonSearch.*.
+  double face_in_body = 0.2;
+  double face_above_shoulders = 1.0;
+  // Taking a remembered user back: the torso wears their clothes (recheck_min_torso_match), the face's width is
+  // within max_size_change of their last (either way), and while LOST the track's last good filter, put on the
+  // candidate, answers with a PSR of at least accept_psr (its box is then the new track's: the user's size and
+  // shape carried on). Of several, the filter's best answer is taken. A bystander fails one of them.
+  double max_size_change = 1.6;
+  double accept_psr = 7.0;
+  int max_candidates = 4;                  //!< detections scored a run at most (best detector scores first)
+
+  template <class V>
+  void visit(V& v) {
+    v("enabled", enabled, "search for the user with BlazePose's person detector too (start without a face, re-acquisition)");
+    v("models_dir", models_dir, "folder of pose_detection.onnx (relative: project root)");
+    v("score_threshold", score_threshold, 0.0, 1.0, "person detector: score a person needs (MediaPipe 0.5)");
+    v("every_frames", every_frames, 1, 1000, "budget: the detector runs on one searching frame in this many");
+    v("tile_share", tile_share, 0.1, 1.0, "whole-frame search: after the frame itself, tiles of this x its short side in turn");
+    v("region_growth", region_growth, 0.0, 100.0, "LOST: the detector's region, the last box grown by this x its height each side");
+    v("region_growth_step", region_growth_step, 0.0, 100.0, "LOST: ... grown this much more after each run without the user");
+    v("start_detections", start_detections, 1, 1000, "new user: detector runs in a row that find the same upright person in view");
+    v("start_min_iou", start_min_iou, 0.0, 1.0, "new user: the same person between runs when their body boxes overlap this much (IoU)");
+    v("max_tilt_deg", max_tilt_deg, 0.0, 180.0, "a person's body axis within this of vertical, degrees");
+    v("face_in_body", face_in_body, 0.01, 2.0, "implied face width / the detection's hips-to-scale-point distance");
+    v("face_above_shoulders", face_above_shoulders, -5.0, 5.0, "implied face centre above the shoulders' midpoint, face widths");
+    v("max_size_change", max_size_change, 1.0, 10.0, "remembered user: face width within this factor of their last");
+    v("accept_psr", accept_psr, 0.0, 1000.0, "LOST: the last good filter's PSR on a candidate needed to take it back");
+    v("max_candidates", max_candidates, 1, 100, "detections scored per run at most");
+  }
+};
+
 struct TrackerParams {
   FaceDetectorParams face;
   DsstParams dsst;
   BodyFitParams body_fit;
+  PersonSearchParams person;
   // The paper's "preset head-body ratio" is not given. Ours: an adult is about 7.5 heads tall and a face
   // box from the cascade is about 0.8 of the head height; a box 2.75 face widths wide holds shoulders and
   // arms resting at the sides, 7 face heights tall reaches below the knees.
@@ -313,6 +373,7 @@ struct TrackerParams {
     v.group("face", face);
     v.group("dsst", dsst);
     v.group("body_fit", body_fit);
+    v.group("person", person);
     v("body_width_in_faces", body_width_in_faces, 0.5, 20.0, "head-body ratio: body box width / face width");
     v("body_height_in_faces", body_height_in_faces, 0.5, 20.0, "head-body ratio: body box height / face height");
     v("body_top_in_faces", body_top_in_faces, 0.0, 5.0, "body box top above the face top, in face heights");

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "bus_node.hpp"
+#include "clock.hpp"
 #include "face_cascade.hpp"
 #include "image_codec.hpp"
 #include "seq_gaps.hpp"
@@ -46,25 +47,65 @@ user_track_t to_message(const TrackOutput& t, const image_t& frame) {
   return m;
 }
 
+namespace {
+
+// What the person search cost (tracker.person): the time of the frames it ran on, and of every frame processed
+// while not tracking, measured here (the core reads no clock); and how far a LOST search had to spread.
+struct SearchCost {
+  int64_t searching_frames = 0, searching_us = 0;
+  int64_t person_frames = 0, person_us = 0;
+
+  void add(bool searching, bool person_ran, int64_t us) {
+    if (searching) ++searching_frames, searching_us += us;
+    if (person_ran) ++person_frames, person_us += us;
+  }
+  std::string text(const gpilot::PersonSearchCounters& c, int every_frames) const {
+    char b[400];
+    std::snprintf(b, sizeof b,
+                  "; person search: %lld runs (1 searching frame in %d), %.1f ms a run, %.1f ms a searching frame, "
+                  "%lld found, %lld not the user, %lld started, %lld taken back, spread over frames: %lld regions grown, "
+                  "%lld whole frame",
+                  static_cast<long long>(c.runs), every_frames,
+                  person_frames ? 1e-3 * static_cast<double>(person_us) / static_cast<double>(person_frames) : 0.0,
+                  searching_frames ? 1e-3 * static_cast<double>(searching_us) / static_cast<double>(searching_frames) : 0.0,
+                  static_cast<long long>(c.detections), static_cast<long long>(c.not_user), static_cast<long long>(c.started),
+                  static_cast<long long>(c.reacquired), static_cast<long long>(c.region_steps),
+                  static_cast<long long>(c.whole_frame));
+    return b;
+  }
+};
+
+}  // namespace
+
 std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node) {
+  const auto params = config.section<TrackerParams>("tracker");
+  return start_tracker_service(config, node, std::make_unique<UserTracker>(params, load_face_cascade(params)));
+}
+
+std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node,
+                                            std::unique_ptr<UserTracker> built) {
   struct State {
-    explicit State(const gpilot::TrackerParams& p) : tracker(p, gpilot::load_face_cascade(p)) {}
-    gpilot::UserTracker tracker;
+    explicit State(std::unique_ptr<UserTracker> t) : owned(std::move(t)), tracker(*owned) {}
+    std::unique_ptr<UserTracker> owned;
+    gpilot::UserTracker& tracker;
     cv::Mat frame;
     gpilot::SeqGaps gaps;
+    SearchCost cost;
   };
   const auto params = config.section<gpilot::TrackerParams>("tracker");
-  auto state = std::make_shared<State>(params);
+  if (!built) throw std::invalid_argument("start_tracker_service: no tracker");
+  auto state = std::make_shared<State>(std::move(built));
   auto& tracker = state->tracker;
   auto& frame = state->frame;
   auto& gaps = state->gaps;
+  auto& cost = state->cost;
   const auto limits = config.section<gpilot::ImageLimits>("image");
 
   // At most camera_queue frames wait (LCM drops the frames that arrive while the queue is full): a stage that
   // falls behind skips frames instead of answering later and later. Each skipped frame (a seq gap) is counted
   // in HEALTH.dropped; the frames it did process are those it published a USER_TRACK of (gpilot-replay gives a
   // replay exactly those).
-  subscribe(node, tracker_channels::kCamera, [&node, &tracker, &frame, &gaps, limits](const gpilot::image_t& msg, int64_t) {
+  subscribe(node, tracker_channels::kCamera, [&node, &tracker, &frame, &gaps, &cost, limits, person = params.person](const gpilot::image_t& msg, int64_t) {
     for (int64_t n = gaps.skipped_before(msg.seq); n > 0; --n) node.drop();
     const std::string why = gpilot::image_to_mat(msg, frame, limits);
     if (!why.empty()) {
@@ -72,12 +113,15 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
       return;
     }
     gpilot::TrackOutput out;
+    const bool was_tracking = tracker.last().status == gpilot::TrackStatus::kTracking;
+    const int64_t t0 = gpilot::monotonic_utime();
     try {
       out = tracker.track(frame);
     } catch (const std::invalid_argument& e) {
       node.reject("CAMERA seq " + std::to_string(msg.seq) + ": " + e.what());
       return;
     }
+    cost.add(!was_tracking, tracker.person_ran(), gpilot::monotonic_utime() - t0);
     publish(node, tracker_channels::kUserTrack, to_message(out, msg));
     tracker.finish(frame);  // the face re-check, after the frame's track is out
     std::string detail = out.status == gpilot::TrackStatus::kTracking ? "tracking"
@@ -95,6 +139,7 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
       detail += "; faces not the user's (other clothes): " + std::to_string(n);
     if (const int64_t n = tracker.off_user(); n > 0)
       detail += "; tracks dropped off the user (no face, other clothes): " + std::to_string(n);
+    if (person.enabled) detail += cost.text(tracker.person_counters(), person.every_frames);
     node.set_state(out.status == gpilot::TrackStatus::kTracking ? gpilot::health_t::STATE_OK
                                                                 : gpilot::health_t::STATE_DEGRADED,
                    detail);

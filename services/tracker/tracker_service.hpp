@@ -13,6 +13,9 @@
 namespace gpilot {
 
 std::shared_ptr<void> start_tracker_service(const Config& config, BusNode& node);
+// ... with a tracker built before the bus started (gpilot-tracker: the face cascade and, with tracker.person, the
+// person detector's model loaded by ServiceCli::before_bus, so a missing file stops it as a bad config does).
+std::shared_ptr<void> start_tracker_service(const Config& config, BusNode& node, std::unique_ptr<UserTracker> tracker);
 
 // The core's output for a frame as gpilot-tracker publishes it on USER_TRACK (utime, seq and size from the
 // frame's message; its pixels are not read). Also the tracker fuzz target, which checks it.

@@ -8,7 +8,59 @@
 #include <utility>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
+#include "box_iou.hpp"
+#include "pose/pose_models.hpp"
+
 namespace gpilot {
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / CV_PI;
+
+std::shared_ptr<PersonDetector> make_person_detector(const PersonSearchParams& p) {
+  if (!p.enabled) return nullptr;
+  PoseParams pose;
+  pose.models_dir = p.models_dir;
+  pose.detector_score_threshold = p.score_threshold;
+  return std::make_shared<PersonDetector>(pose, PoseModels::load_detector(pose_detector_path(pose)));
+}
+
+// The face as the cascade would box it, from the detection's keypoints (person.face_in_body, face_above_shoulders).
+cv::Rect2d implied_face(const PersonDetection& d, const PersonSearchParams& p) {
+  const cv::Point2d hips(d.keypoints[person_keypoint::kHipCentre]), top(d.keypoints[person_keypoint::kBodyScale]);
+  const cv::Point2d shoulders(d.keypoints[person_keypoint::kShoulderCentre]);
+  const double w = p.face_in_body * cv::norm(top - hips);
+  const cv::Point2d c(shoulders.x, shoulders.y - p.face_above_shoulders * w);
+  return cv::Rect2d(c.x - w / 2, c.y - w / 2, w, w);
+}
+
+// The whole-frame search's region number k: 0 the frame itself, then squares of tile_share x its short side
+// covering it (overlapping by a third of a side at least).
+cv::Rect2f search_region(const cv::Size& frame, double tile_share, int64_t k) {
+  const double side = tile_share * std::min(frame.width, frame.height);
+  const auto count = [&](int length) { return length <= side ? 1 : 1 + static_cast<int>(std::ceil((length - side) / (side * 2 / 3))); };
+  const int nx = count(frame.width), ny = count(frame.height);
+  const int64_t i = k % (1 + nx * ny);
+  if (i == 0 || side >= std::max(frame.width, frame.height)) return {};
+  const int tx = static_cast<int>((i - 1) % nx), ty = static_cast<int>((i - 1) / nx);
+  const double x = nx > 1 ? tx * (frame.width - side) / (nx - 1) : 0.0, y = ny > 1 ? ty * (frame.height - side) / (ny - 1) : 0.0;
+  return cv::Rect2f(static_cast<float>(x), static_cast<float>(y), static_cast<float>(side), static_cast<float>(side));
+}
+
+// Upright: the body's axis (hips to the full-body scale point, above them) within max_tilt_deg of vertical; the
+// shoulders (and with hips, the hips too) inside the frame.
+bool upright_in_view(const PersonDetection& d, const cv::Size& frame, double max_tilt_deg, bool hips) {
+  const cv::Rect2f in(0, 0, static_cast<float>(frame.width), static_cast<float>(frame.height));
+  const cv::Point2f hip = d.keypoints[person_keypoint::kHipCentre];
+  const cv::Point2f top = d.keypoints[person_keypoint::kBodyScale];
+  if (!in.contains(d.keypoints[person_keypoint::kShoulderCentre]) || (hips && !in.contains(hip))) return false;
+  const cv::Point2f axis = top - hip;
+  if (!(axis.y < 0)) return false;
+  return std::atan2(std::abs(axis.x), -axis.y) * kDegreesPerRadian <= max_tilt_deg;
+}
+
+}  // namespace
 
 namespace {
 // The re-check takes a face only within this factor of the width the track expects, larger or smaller: a face
@@ -17,7 +69,11 @@ constexpr double kMaxRecheckFaceScale = 2.0;
 }  // namespace
 
 UserTracker::UserTracker(const TrackerParams& params, cv::CascadeClassifier face_cascade)
-    : p_(params), faces_(params, std::move(face_cascade)), dsst_(params.dsst), track_body_(params.body()) {}
+    : p_(params),
+      faces_(params, std::move(face_cascade)),
+      dsst_(params.dsst),
+      track_body_(params.body()),
+      persons_(make_person_detector(params.person)) {}
 
 std::string UserTracker::set_box(const cv::Rect2d& box) {
   if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height))
@@ -40,6 +96,11 @@ void UserTracker::reset() {
   searches_ = 0;
   torso_colours_.clear();  // whoever comes is the user (RESET: a new user)
   faces_.restart_scan();
+  held_person_.reset();
+  held_runs_ = 0;
+  person_misses_ = 0;
+  person_wait_ = 0;
+  scan_region_ = 0;
 }
 
 // DSST follows the part of the body box inside the frame (the window); the body box keeps its place and size
@@ -63,6 +124,9 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   last_good_box_ = out_.box;
   last_good_estimate_ = dsst_.estimate();
   if (new_track) ++out_.track_id;
+  have_filter_ = true;
+  held_person_.reset();
+  held_runs_ = 0;
   bad_frames_ = 0;
   frames_since_face_ = 0;
   if (new_track) face_misses_ = 0;
@@ -220,7 +284,123 @@ bool UserTracker::search(const cv::Mat& frame) {
     faces_.restart_scan();  // the next search (after a loss) scans from the first tile
     return true;
   }
-  return false;
+  return search_person(frame, remembered);
+}
+
+// The body box's DSST window (body_box's inverse, the track's box_in_window_).
+DsstEstimate UserTracker::filter_on(const cv::Mat& frame, const cv::Rect2d& body) {
+  const cv::Rect2d& k = box_in_window_;
+  const double ww = body.width / k.width, wh = body.height / k.height;
+  DsstEstimate at = last_good_estimate_;
+  at.box = cv::Rect2d(body.x - k.x * ww, body.y - k.y * wh, ww, wh);
+  at.scale = last_good_estimate_.scale * ww / last_good_estimate_.box.width;
+  dsst_.restore(at);
+  return dsst_.track(frame, false);
+}
+
+// The person search (tracker.person): BlazePose's person detector on one searching frame in every_frames.
+// A remembered user (LOST, or SEARCHING within user_memory_frames with their clothes known) is taken back by a
+// candidate in their clothes, of their size, and (LOST) that the last good filter answers on with accept_psr:
+// the filter's box is the new track's. Nobody remembered: a person upright and whole in view, found by
+// start_detections runs in a row, starts a track as a face would (body_fit). True when a track started.
+bool UserTracker::search_person(const cv::Mat& frame, bool remembered) {
+  if (!persons_) return false;
+  if (person_wait_ > 0) {
+    --person_wait_;
+    return false;
+  }
+  const PersonSearchParams& pp = p_.person;
+  person_wait_ = pp.every_frames - 1;
+  const bool lost = out_.status == TrackStatus::kLost;
+  const bool known = remembered && !torso_colours_.empty();
+  const cv::Rect2d frame_rect(0, 0, frame.cols, frame.rows);
+  const auto grown = [&](const cv::Rect2d& b, double g) {
+    return cv::Rect2d(b.x - g * b.height, b.y - g * b.height, b.width + 2 * g * b.height, b.height + 2 * g * b.height) & frame_rect;
+  };
+  // Where this run looks (empty: the whole frame): the search spreads over runs.
+  cv::Rect2d region = lost ? grown(last_good_box_, pp.region_growth + pp.region_growth_step * static_cast<double>(person_misses_))
+                           : held_person_ ? grown(*held_person_, pp.region_growth) : frame_rect;
+  if (lost && person_misses_ > 0) ++person_counters_.region_steps;
+  if (region == frame_rect) {
+    // The whole frame, then its tiles in turn (a far person is too small in the frame letterboxed to 224 px).
+    ++person_counters_.whole_frame;
+    region = search_region(frame.size(), pp.tile_share, scan_region_++);
+  }
+  if (frame.channels() == 1) cv::cvtColor(frame, bgr_, cv::COLOR_GRAY2BGR);
+  std::vector<PersonDetection> found = persons_->detect(frame.channels() == 3 ? frame : bgr_, cv::Rect2f(region));
+  ++person_counters_.runs;
+  person_ran_ = true;
+  person_counters_.detections += static_cast<int64_t>(found.size());
+  if (found.size() > static_cast<size_t>(pp.max_candidates)) found.resize(static_cast<size_t>(pp.max_candidates));
+
+  if (lost || known) {
+    struct Candidate {
+      double psr;
+      cv::Rect2d body, face;
+    };
+    std::optional<Candidate> best;
+    const double last_face = last_face_width();
+    for (const PersonDetection& d : found) {
+      if (!upright_in_view(d, frame.size(), pp.max_tilt_deg, false)) continue;
+      const cv::Rect2d face = implied_face(d, pp);
+      if (std::abs(std::log(face.width / last_face)) > std::log(pp.max_size_change) || !wears_users_clothes(frame, face)) {
+        ++person_counters_.not_user;
+        continue;
+      }
+      Candidate c{0.0, body_from_face(face, track_body_), face};
+      if (lost && have_filter_) {
+        const DsstEstimate e = filter_on(frame, c.body);
+        if (!(e.psr >= pp.accept_psr)) {
+          ++person_counters_.not_user;
+          continue;
+        }
+        c.psr = e.psr;
+        c.body = body_box(e.box);
+      }
+      if (!best || c.psr > best->psr) best = c;
+    }
+    if (!best) {
+      if (lost) ++person_misses_;
+      return false;
+    }
+    start(frame, best->body, InitSource::kPerson);
+    if (known) wears_users_clothes(frame, best->face, true);
+    ++person_counters_.reacquired;
+    person_misses_ = 0;
+    faces_.restart_scan();
+    return true;
+  }
+
+  // Nobody remembered: the same upright person, whole in view, on start_detections runs in a row.
+  const PersonDetection* pick = nullptr;
+  double pick_iou = -1.0;
+  for (const PersonDetection& d : found) {
+    if (!upright_in_view(d, frame.size(), pp.max_tilt_deg, true)) continue;
+    const double o = held_person_ ? iou(*held_person_, body_from_face(implied_face(d, pp), p_.body())) : 0.0;
+    if (o > pick_iou) pick = &d, pick_iou = o;
+  }
+  if (!pick) {
+    held_person_.reset();
+    held_runs_ = 0;
+    return false;
+  }
+  const cv::Rect2d face = implied_face(*pick, pp);
+  held_runs_ = held_person_ && pick_iou >= pp.start_min_iou ? held_runs_ + 1 : 1;
+  held_person_ = body_from_face(face, p_.body());
+  if (held_runs_ < pp.start_detections) return false;
+  const BodyFit fit = fit_body(frame, face, p_.body(), p_.body_fit);
+  if (fit.refused != FaceRefusal::kNone) {
+    ++refusals_[static_cast<size_t>(fit.refused)];
+    if (out_.refused == FaceRefusal::kNone) out_.refused = fit.refused;
+    return false;
+  }
+  track_body_ = fit.body;
+  start(frame, fit.box, InitSource::kPerson);
+  torso_colours_ = torso_colours(frame, face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+  ++person_counters_.started;
+  person_misses_ = 0;
+  faces_.restart_scan();
+  return true;
 }
 
 void UserTracker::lose(bool model_trusted) {
@@ -233,6 +413,9 @@ void UserTracker::lose(bool model_trusted) {
   redetect_ok_ = model_trusted;
   searches_ = 0;
   faces_.restart_scan();
+  person_misses_ = 0;
+  person_wait_ = 0;
+  scan_region_ = 0;
 }
 
 void UserTracker::track_frame(const cv::Mat& frame) {
@@ -332,6 +515,7 @@ const TrackOutput& UserTracker::track(const cv::Mat& frame) {
   if (recheck_psr_) throw std::logic_error("UserTracker::track: finish() was not called on the last frame");
   out_.face.reset();  // set again below only if the cascade finds the face in this frame
   out_.refused = FaceRefusal::kNone;
+  person_ran_ = false;
   std::optional<RecheckFace> rechecked;
   rechecked.swap(recheck_face_);
   if (frame.size() != frame_size_) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,12 +19,24 @@
 #include "body_fit.hpp"
 #include "dsst.hpp"
 #include "face_detector.hpp"
+#include "pose/person_detector.hpp"
 #include "tracker_params.hpp"
 
 namespace gpilot {
 
 enum class TrackStatus { kSearching = 0, kTracking = 1, kLost = 2 };
-enum class InitSource { kNone = 0, kFace = 1, kManual = 2 };
+enum class InitSource { kNone = 0, kFace = 1, kManual = 2, kPerson = 3 };
+
+//! What the person search (tracker.person) did since construction (HEALTH).
+struct PersonSearchCounters {
+  int64_t runs = 0;          //!< frames the person detector ran on
+  int64_t detections = 0;    //!< people it found (over its score threshold)
+  int64_t not_user = 0;      //!< candidates refused as not the remembered user (clothes, size, the filter)
+  int64_t started = 0;       //!< tracks started on a new user found by the body alone
+  int64_t reacquired = 0;    //!< remembered users taken back
+  int64_t region_steps = 0;  //!< LOST runs whose region had to grow again (the search spread over frames)
+  int64_t whole_frame = 0;   //!< LOST runs whose region covered the whole frame
+};
 
 struct TrackOutput {
   TrackStatus status = TrackStatus::kSearching;
@@ -43,6 +56,8 @@ struct TrackOutput {
 class UserTracker {
  public:
   // face_cascade: tracker.face.cascade, read by load_face_cascade (face_cascade.hpp) where the tracker is built.
+  // With tracker.person.enabled the person detector's model is loaded too (person.models_dir/pose_detection.onnx):
+  // PoseModelError naming the file if it cannot.
   UserTracker(const TrackerParams& params, cv::CascadeClassifier face_cascade);
 
   // Asks for a track on box from the next frame on. "" if accepted, else why not (non-finite, < 2 px).
@@ -77,6 +92,10 @@ class UserTracker {
   int64_t scans_skipped() const { return scans_skipped_; }
   //! The ratios of the current track's body box to its face (the preset, or fitted when it started on a face).
   const BodyProportions& track_body() const { return track_body_; }
+  //! The person search's counters (all zero with tracker.person off).
+  const PersonSearchCounters& person_counters() const { return person_counters_; }
+  //! Whether the person detector ran on the last frame.
+  bool person_ran() const { return person_ran_; }
 
  private:
   // A known user re-found on a face below this share of their last face's width: a part of their face, taken
@@ -85,6 +104,9 @@ class UserTracker {
   void start(const cv::Mat& frame, const cv::Rect2d& box, InitSource source, bool new_track = true);
   void found_face(const cv::Mat& frame, const cv::Rect2d& face);
   bool search(const cv::Mat& frame);
+  bool search_person(const cv::Mat& frame, bool remembered);
+  //! The filter's answer on a candidate body box: its estimate put there (position and the user's scale), one window.
+  DsstEstimate filter_on(const cv::Mat& frame, const cv::Rect2d& body);
   void track_frame(const cv::Mat& frame);
   void lost_frame(const cv::Mat& frame);
   void lose(bool model_trusted);
@@ -126,6 +148,17 @@ class UserTracker {
     int track_id = 0;
   };
   std::optional<RecheckFace> recheck_face_;  //!< published with the next frame
+  // The person search (tracker.person).
+  std::shared_ptr<PersonDetector> persons_;  //!< null: off (shared by copies: the net is stateless between runs)
+  PersonSearchCounters person_counters_;
+  int64_t person_wait_ = 0;     //!< searching frames left before the detector's next run (every_frames)
+  int64_t person_misses_ = 0;   //!< LOST runs without the user since the loss (the region grows with them)
+  int64_t scan_region_ = 0;     //!< the whole-frame search's next region (search_region)
+  std::optional<cv::Rect2d> held_person_;  //!< a new user's body box on the last run, and runs in a row found
+  int held_runs_ = 0;
+  bool person_ran_ = false;
+  bool have_filter_ = false;    //!< a track has been started: the filter holds a user's model
+  cv::Mat bgr_;                 //!< a grey frame converted for the detector
 };
 
 }  // namespace gpilot

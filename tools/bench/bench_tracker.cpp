@@ -1,5 +1,6 @@
 // Tracker costs on one core: FHOG of a DSST-sized window, one DSST frame (track + learn) on 640x480 for a
-// near and a far person, and the Haar face search on a 640x480 frame.
+// near and a far person, the Haar face search on a 640x480 frame, and a searching frame of the UserTracker
+// (face scan step, and with tracker.person the person detector on one frame in person.every_frames).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "fhog.hpp"
 #include "face_cascade.hpp"
 #include "face_detector.hpp"
+#include "user_tracker.hpp"
 // The textured scene of the DSST known-answer tests.
 #include "../../tests/unit/tracker/known_scene.hpp"
 
@@ -57,5 +59,18 @@ void BM_FaceSearch640x480(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(faces.detect(frame));
 }
 BENCHMARK(BM_FaceSearch640x480)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// A UserTracker SEARCHING a frame with nobody in it (the search's whole budget every frame): the mean over
+// frames is the cost of a searching frame. Args: width, height, tracker.person.enabled.
+void BM_UserTrackerSearching(benchmark::State& state) {
+  cv::setNumThreads(1);
+  gpilot::TrackerParams p;
+  p.person.enabled = state.range(2) != 0;
+  gpilot::UserTracker tracker(p);
+  const cv::Mat frame = gpilot::test::texture(cv::Size(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), 11);
+  for (auto _ : state) benchmark::DoNotOptimize(tracker.process(frame));
+}
+BENCHMARK(BM_UserTrackerSearching)->Args({640, 480, 0})->Args({640, 480, 1})->Args({1280, 720, 0})->Args({1280, 720, 1})
+    ->Iterations(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace

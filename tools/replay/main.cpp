@@ -163,7 +163,7 @@ const std::map<std::string, StageEntry>& stages() {
   namespace dc = decide_channels;
   namespace fc = flight_channels;
   static const std::map<std::string, StageEntry> table = {
-      {"tracker", {start_tracker_service, declared(tc::kUses, R::In), declared(tc::kUses, R::Out),
+      {"tracker", {static_cast<std::shared_ptr<void> (*)(const Config&, BusNode&)>(start_tracker_service), declared(tc::kUses, R::In), declared(tc::kUses, R::Out),
                    {{tc::kCamera.name, tc::kUserTrack.name}}}},
       {"hands", {static_cast<std::shared_ptr<void> (*)(const Config&, BusNode&)>(start_hands_service), declared(hc::kUses, R::In), declared(hc::kUses, R::Out),
                  {{hc::kCamera.name, hc::kHandObs.name}}, nullptr, {hc::kCamera.name, hc::kUserTrack.name}}},

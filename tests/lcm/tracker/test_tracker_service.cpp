@@ -15,6 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include <sys/wait.h>
+
 #include <lcm/lcm-cpp.hpp>
 
 #include <opencv2/imgcodecs.hpp>
@@ -36,7 +38,8 @@ const char* kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 // gpilot-tracker as a real process and a test node on the bus beside it, keeping the stage's last HEALTH.
 // wait_for_health() returns once the first HEALTH came (the stage is then listening).
 struct TrackerUnderTest {
-  explicit TrackerUnderTest(const std::string& node_name) : bus(node_name, kUrl) {
+  explicit TrackerUnderTest(const std::string& node_name, const std::vector<std::string>& extra = {})
+      : service(command(extra)), bus(node_name, kUrl) {
     bus.subscribe<health_t>("HEALTH", [this](const health_t& m, int64_t) {
       if (m.name != "gpilot-tracker") return;
       last_health = m;
@@ -49,7 +52,13 @@ struct TrackerUnderTest {
   }
   bool wait_for_health() { return spin_until([this] { return heard; }, 10000); }
 
-  test::ChildProcess service{{std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl}};
+  static std::vector<std::string> command(const std::vector<std::string>& extra) {
+    std::vector<std::string> argv{std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return argv;
+  }
+
+  test::ChildProcess service;
   BusNode bus;
   health_t last_health{};
   bool heard = false;
@@ -200,6 +209,42 @@ TEST(TrackerService, RefusedFacesAreCountedInHealth) {
   EXPECT_TRUE(stage.spin_until([&] { return stage.last_health.state_detail.find(want) != std::string::npos; }, 3000))
       << "HEALTH state_detail: '" << stage.last_health.state_detail << "', want '" << want << "'";
   EXPECT_EQ(stage.last_health.state, health_t::STATE_DEGRADED);
+}
+
+// GIVEN gpilot-tracker with the person search (tracker.person.enabled) WHEN ten frames with nobody in them come
+// THEN HEALTH says what the search did: the detector on one searching frame in five, 2 runs, none found.
+TEST(TrackerService, ThePersonSearchsCostIsInHealth) {
+  TrackerUnderTest stage("test-tracker-person", {"--set", "tracker.person.enabled=true"});
+  ASSERT_GT(stage.service.pid(), 0) << "cannot start gpilot-tracker";
+  std::map<int64_t, user_track_t> tracks;
+  stage.bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
+  ASSERT_TRUE(stage.wait_for_health()) << "no HEALTH from gpilot-tracker";
+  const cv::Mat frame(480, 640, CV_8UC3, cv::Scalar(90, 90, 90));
+  for (int64_t seq = 0; seq < 10; ++seq) {
+    stage.bus.publish("CAMERA", mat_to_image(frame, wall_utime(), seq));
+    ASSERT_TRUE(stage.spin_until([&] { return tracks.count(seq) > 0; }, 5000)) << "no USER_TRACK for seq " << seq;
+    EXPECT_EQ(tracks[seq].status, user_track_t::STATUS_SEARCHING) << "seq " << seq;
+  }
+  const std::string want = "person search: 2 runs (1 searching frame in 5)";
+  EXPECT_TRUE(stage.spin_until([&] { return stage.last_health.state_detail.find(want) != std::string::npos; }, 3000))
+      << "HEALTH state_detail: '" << stage.last_health.state_detail << "', want '" << want << "'";
+  EXPECT_NE(stage.last_health.state_detail.find("0 found, 0 not the user, 0 started"), std::string::npos)
+      << stage.last_health.state_detail;
+}
+
+// GIVEN the person search on and its model missing WHEN gpilot-tracker starts THEN it stops before the bus with
+// status 2 (a bad config), naming the file.
+TEST(TrackerService, AMissingPersonModelStopsItBeforeTheBusNamingTheFile) {
+  const std::string cmd = std::string(GPILOT_BIN_DIR) + "/gpilot-tracker --lcm-url '" + kUrl +
+                          "' --set tracker.person.enabled=true --set tracker.person.models_dir=models/no-such-folder 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  const int status = pclose(p);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << "status " << status << ": " << out;
+  EXPECT_NE(out.find("models/no-such-folder/pose_detection.onnx"), std::string::npos) << out;
 }
 
 // Under load the live stage and its replay agree bit for bit. Both cores are kept busy beside gpilot-tracker
