@@ -48,12 +48,16 @@ TEST(PoseHandMethod, IsTheDefaultAndEachHeldGestureOfTheTourGivesTheScenesObserv
     ASSERT_TRUE(r.pose.has_value());
     EXPECT_FALSE(r.skin.has_value());
     EXPECT_EQ(static_cast<int>(r.kind), f.truth.expected_kind) << r.pose->reading;
-    if (r.kind == HandKind::None) continue;
-    // The vector points where the scene's does: within 20 deg (p_uc / p_bc are the landmarks', the scene's the box's).
-    const double angle = std::abs(std::remainder(std::atan2(r.vector.y, r.vector.x) -
-                                                     std::atan2(f.truth.expected_vector.y, f.truth.expected_vector.x),
-                                                 2 * M_PI)) * 180 / M_PI;
-    EXPECT_LT(angle, 20.0) << r.pose->reading;
+    if (r.kind == HandKind::Front) {
+      // A hand in front: higher or lower than p_bc, as the scene's (decide reads only the sign).
+      EXPECT_EQ(r.vector.y < 0, f.truth.expected_vector.y < 0) << r.pose->reading;
+    } else if (r.kind == HandKind::Out) {
+      // An arm out points where the scene's does: within 20 deg (p_uc is the landmarks', the scene's the box's).
+      const double angle = std::abs(std::remainder(std::atan2(r.vector.y, r.vector.x) -
+                                                       std::atan2(f.truth.expected_vector.y, f.truth.expected_vector.x),
+                                                   2 * M_PI)) * 180 / M_PI;
+      EXPECT_LT(angle, 20.0) << r.pose->reading;
+    }
   }
 }
 
