@@ -196,10 +196,24 @@ void BusNode::handler_failed(const std::string& channel, const std::string& what
 
 int BusNode::drain() {
   int n = 0;
-  while (lcm_->handleTimeout(0) > 0) ++n;
-  if (frames_lcm_)
-    while (frames_lcm_->handleTimeout(0) > 0) ++n;
+  do {  // what the idle work published is dispatched too (memq://: to this node's own subscribers)
+    while (lcm_->handleTimeout(0) > 0) ++n;
+    if (frames_lcm_)
+      while (frames_lcm_->handleTimeout(0) > 0) ++n;
+  } while (run_idle());
   return n;
+}
+
+bool BusNode::run_idle() {
+  bool any = false;
+  for (auto& idle : idle_) {
+    const int64_t t0 = monotonic_utime();
+    bool worked = false;
+    run_handler(idle.what, [&] { worked = idle.fn(); });
+    if (worked) stats_.processing_time(monotonic_utime() - t0);
+    any = any || worked;
+  }
+  return any;
 }
 
 int BusNode::handle_for(int timeout_ms) {
@@ -253,10 +267,15 @@ bool BusNode::spin_once(int timeout_ms) {
   const int64_t now = timer_clock_();
   for (const auto& t : timers_)
     wait_ms = std::min<int>(wait_ms, static_cast<int>(std::max<int64_t>(0, (t.next_us - now + 999) / 1000)));
-  if (handle_for(wait_ms) < 0) {
+  int handled = handle_for(wait_ms);
+  // What else has arrived is dispatched before the idle work, so that the idle work takes the newest.
+  for (int n = handled; handled > 0 && !idle_.empty() && n < kMaxMessagesBeforeIdle; n += handled)
+    handled = handle_for(0);
+  if (handled < 0) {
     stats_.set_state(health_t::STATE_ERROR, "LCM receive failed");
     return false;
   }
+  run_idle();
   run_due_timers();
   return !stopping();
 }

@@ -158,8 +158,19 @@ class BusNode {
   using RawHandler = std::function<void(const std::string&, const void*, size_t, int64_t)>;
   void subscribe_raw(const std::string& channel, RawHandler fn, int queue_capacity = 0);
 
-  // Dispatches every message already queued (memq:// replay); returns how many were handled.
+  // Dispatches every message already queued (memq:// replay), then runs the idle work (when_idle); returns
+  // how many messages were handled.
   int drain();
+
+  // Work done from the loop once no message is waiting: after spin_once has dispatched every message that had
+  // arrived (up to kMaxMessagesBeforeIdle of them), and at the end of drain(). A stage slower than its input
+  // keeps only its newest unit of work in its handlers (a newer one replaces it, counted) and does it here, so
+  // it answers the newest frame rather than working through frames gone stale in the queue. fn returns true
+  // when it did work: its time is counted as processing time. It runs like a handler (an InputError rejects,
+  // any other throw is the process's failure); `what` names it there.
+  void when_idle(const std::string& what, std::function<bool()> fn) { idle_.push_back(Idle{what, std::move(fn)}); }
+  // The messages spin_once dispatches before it runs the idle work even if more keep coming.
+  static constexpr int kMaxMessagesBeforeIdle = 64;
 
   // Runs fn every period_s seconds from the loop, on the timer clock (the monotonic clock unless a test set
   // its own). In replay (the node on the log's clock, set_log_time) timers never fire by themselves: the
@@ -213,6 +224,11 @@ class BusNode {
     Msg msg{};            // decoded into, message after message
     bool in_use = false;  // a handler that dispatches again (drain) gets a fresh message, not this one
   };
+  struct Idle {
+    std::string what;
+    std::function<bool()> fn;
+  };
+  bool run_idle();  // true when some idle work was done
   struct Timer {
     int64_t period_us;
     int64_t next_us;
@@ -285,6 +301,7 @@ class BusNode {
   StageStats stats_;
   std::vector<std::unique_ptr<SubscriptionBase>> subs_;
   std::vector<Timer> timers_;
+  std::vector<Idle> idle_;
   TimerClock timer_clock_ = monotonic_utime;
   bool stop_requested_ = false;
 };

@@ -131,8 +131,9 @@ struct HandsParams {
                                              //!< (out_min_angle_deg leaves out the side of a far DOWN hand nearer
                                              //!< the body: 11-17 px counted at 9.8-9.9 m; 0 = as above; ours)
   int match_window = 15;            //!< frames/tracks wait this many seqs for their partner, then are dropped
-  int camera_queue = 2;             //!< CAMERA frames queued at most: a stage that falls behind skips frames
-                                    //!< instead of answering later and later (LCM's own default queue is 30)
+  int camera_queue = 4;             //!< CAMERA frames LCM holds while the stage observes one (the newest pair
+                                    //!< is observed next, the others skipped; LCM drops arrivals beyond this,
+                                    //!< the newest: 4 frames cover a 130 ms observation at 30 fps; LCM's own is 30)
   // Hands that are hand-shaped and within reach (ours, not the paper's: colour alone finds walls, wood and bare
   // forearms on real photos; hands README, ablation table). 0 turns each off.
   double max_blob_hand_areas = 4.0;  //!< a skin component with more than this many hand squares outside the user
@@ -183,7 +184,7 @@ struct HandsParams {
     v("min_skin_square_share", min_skin_square_share, 0.0, 1.0, "Alg. 1 and 2 need at most this share of the hand square's area in skin (small far users; 0 = off; ours)");
     v("down_min_skin_square_share", down_min_skin_square_share, 0.0, 1.0, "Alg. 1, hand below the shoulder line: at most this share of the hand square in skin outside (0 = min_skin_square_share; ours)");
     v("match_window", match_window, 1, 1000, "CAMERA/USER_TRACK pairing: seqs an unmatched one waits before it is dropped");
-    v("camera_queue", camera_queue, 1, 1000, "CAMERA frames queued at most (more are skipped, counted in HEALTH.dropped)");
+    v("camera_queue", camera_queue, 1, 1000, "CAMERA frames held while one is observed (the newest pair is observed next; skipped frames are counted in HEALTH.dropped)");
     v("max_blob_hand_areas", max_blob_hand_areas, 0.0, 1000.0, "skin component with more hand squares outside the box is no hand (0 = off; ours)");
     v("shoulder_half_ratio", shoulder_half_ratio, 0.0, 2.0, "shoulders this many box widths either side of p_uc");
     v("reach_ratio", reach_ratio, 0.0, 10.0, "Alg. 1: hand within this many box widths of its shoulder (0 = off; ours)");

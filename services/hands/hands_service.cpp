@@ -6,7 +6,9 @@
 // is not TRACKING gives NONE; a track made on a frame of another size is rejected.
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bus_node.hpp"
@@ -131,6 +133,7 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, s
     std::vector<cv::Mat> spare_pixels;
     int64_t frames_dropped = 0, tracks_dropped = 0;
     SeqGaps gaps;
+    std::optional<std::pair<ArrivedFrame, user_track_t>> pending;  // the newest pair, observed when the bus is idle
   };
   const auto params = config.section<HandsParams>("hands");
   auto state = std::make_shared<State>(params, std::move(chosen));
@@ -142,25 +145,46 @@ std::shared_ptr<void> start_hands_service(const Config& config, BusNode& node, s
   auto& spare_pixels = state->spare_pixels;
 
   const auto limits = config.section<ImageLimits>("image");
-  auto handle = [&node, &method, &pairer, &frames_dropped, &tracks_dropped, &spare_buffers, &spare_pixels](std::optional<std::pair<ArrivedFrame, user_track_t>> pair) {
+  // A pair waits in `pending` until the loop has nothing more to dispatch (BusNode::when_idle): a newer pair
+  // replaces it (the older frame is skipped, counted in HEALTH.dropped), so a stage that falls behind observes
+  // the newest frame, never a queue of stale ones.
+  auto& pending = state->pending;
+  auto recycle = [&spare_buffers, &spare_pixels](ArrivedFrame& arrived) {
+    if (spare_buffers.size() < kSpareBuffers) spare_buffers.push_back(std::move(arrived.frame.data));
+    if (spare_pixels.size() < kSpareBuffers && arrived.bgr.u != nullptr) spare_pixels.push_back(std::move(arrived.bgr));
+  };
+  auto handle = [&node, &pairer, &frames_dropped, &tracks_dropped, &pending, recycle](std::optional<std::pair<ArrivedFrame, user_track_t>> pair) {
     for (; frames_dropped < pairer.dropped_frames(); ++frames_dropped)
       node.reject("CAMERA frame without a USER_TRACK of the same seq (dropped after hands.match_window seqs)");
     for (; tracks_dropped < pairer.dropped_tracks(); ++tracks_dropped)
       node.reject("USER_TRACK without a CAMERA frame of the same seq (dropped after hands.match_window seqs)");
     if (!pair) return;
-    auto& [arrived, track] = *pair;
+    if (pending) {
+      recycle(pending->first);
+      node.drop();
+    }
+    pending = std::move(pair);
+  };
+  node.when_idle("hands", [&node, &method, &pending, recycle] {
+    if (!pending) return false;
+    auto pair = std::move(*pending);
+    pending.reset();
+    auto& [arrived, track] = pair;
     hand_obs_t obs;
     const std::string why =
         arrived.undecodable.empty() ? hands_on_decoded(method, arrived.frame, arrived.bgr, track, obs) : arrived.undecodable;
-    if (spare_buffers.size() < kSpareBuffers) spare_buffers.push_back(std::move(arrived.frame.data));
-    if (spare_pixels.size() < kSpareBuffers && arrived.bgr.u != nullptr) spare_pixels.push_back(std::move(arrived.bgr));
-    if (!why.empty()) return node.reject(why);
+    recycle(arrived);
+    if (!why.empty()) {
+      node.reject(why);
+      return true;
+    }
     publish(node, hands_channels::kHandObs, obs);
     node.set_state(health_t::STATE_OK, method.description());
-  };
-  // A short CAMERA queue (hands.camera_queue): LCM drops the frames that arrive while it is full; a skipped
-  // frame (a seq gap) is counted in HEALTH.dropped, and gpilot-replay gives a replay only the frames this stage
-  // published a HAND_OBS of.
+    return true;
+  });
+  // A short CAMERA queue (hands.camera_queue) holds the frames that arrive during an observation; LCM drops
+  // those that find it full. A skipped frame (a seq gap, or a pair replaced while pending) is counted in
+  // HEALTH.dropped, and gpilot-replay gives a replay only the frames this stage published a HAND_OBS of.
   auto& gaps = state->gaps;
   subscribe_taking(node, hands_channels::kCamera, [&node, &gaps, handle, &pairer, &spare_buffers, &spare_pixels, limits](image_t& m, int64_t) {
     for (int64_t n = gaps.skipped_before(m.seq); n > 0; --n) node.drop();

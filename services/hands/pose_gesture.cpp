@@ -53,7 +53,7 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
   t.face = sum * (1.0f / static_cast<float>(L::kRightEar + 1));
   t.shoulder_width = length(t.left_shoulder - t.right_shoulder);
   t.face_radius = p.face_radius * t.shoulder_width;
-  t.hips_seen = seen(lm, L::kLeftHip, p.min_visibility) && seen(lm, L::kRightHip, p.min_visibility);
+  t.hips_seen = seen(lm, L::kLeftHip, p.hips_min_visibility) && seen(lm, L::kRightHip, p.hips_min_visibility);
   return t;
 }
 

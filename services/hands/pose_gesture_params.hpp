@@ -25,6 +25,9 @@ struct PoseGestureParams {
                                       //!< straight down, rests (a hand on the hip)
   bool front_wrist_between_hips = true; //!< FRONT: a straight arm whose wrist lies between the hips in x is held in
                                         //!< front of the body, not hanging (the hand low in front, seen from ahead)
+  double hips_min_visibility = 0.3;   //!< FRONT is judged only with both hips at least this visible (the hip line and
+                                      //!< p_bc measured); lower than min_visibility: hips at the frame's bottom edge
+                                      //!< (the drone above the user) score 0.4-0.5 where they are right
   double span_margin = 0.1;           //!< the torso's span in x is its shoulders' and hips' extent grown by this many
                                       //!< torso heights each side
   double face_radius = 0.4;           //!< a wrist within this many shoulder widths of the face's centre (nose, eyes,
@@ -41,6 +44,7 @@ struct PoseGestureParams {
     v("out_beside_box_min_from_down_deg", out_beside_box_min_from_down_deg, 0.0, 180.0, "OUT: a straight arm this far from down with the hand outside the user box (180: box not used)");
     v("rest_max_from_down_deg", rest_max_from_down_deg, 0.0, 180.0, "REST: a bent arm with the hand below the body centre, at most this far from down");
     v("front_wrist_between_hips", front_wrist_between_hips, "FRONT: a straight arm with the wrist between the hips in x is in front of the body, not hanging");
+    v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");
     v("face_radius", face_radius, 0.0, 2.0, "a wrist within this many shoulder widths of the face centre is at the face (no command)");
     v("hand_beyond_wrist", hand_beyond_wrist, 0.0, 1.5, "hand point: this share of the way from the wrist to the knuckles");
