@@ -20,9 +20,11 @@ constexpr int kMinBoxSidePx = 4;
 // this many box widths from p_uc.x (each side is half a box wide).
 constexpr double kOuterHalfOfSideRatio = 0.25;
 
-// A colour is the torso's clothing when at least 1 in this many of the torso's pixels have it (0.5 %): rarer
-// colours there are its edges, shadows and what shows through, which an arm must not be joined by.
-constexpr int64_t kClothingColourOneIn = 200;
+// The classifier, refused when empty (before anything is sized from it).
+SkinClassifier non_empty(SkinClassifier skin) {
+  if (skin.empty()) throw SkinModelError("hand detector needs a skin classifier");
+  return skin;
+}
 
 }  // namespace
 
@@ -70,12 +72,11 @@ HandGeometry hand_geometry(const HandsParams& p, const cv::Rect2f& b, cv::Size i
   return g;
 }
 
-HandDetector::HandDetector(const HandsParams& params, SkinClassifier skin) : params_(params), skin_(std::move(skin)) {
-  if (skin_.empty()) throw SkinModelError("hand detector needs a skin classifier");
-}
+HandDetector::HandDetector(const HandsParams& params, SkinClassifier skin)
+    : params_(params), skin_(non_empty(std::move(skin))), own_clothing_(params.skin.adapt, skin_.bins()) {}
 
 HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin,
-                                 const std::optional<cv::Rect2f>& face) {
+                                 const std::optional<cv::Rect2f>& face, const ClothingColours* clothing) {
   CV_Assert(bgr.type() == CV_8UC3);
   const HandGeometry g = hand_geometry(params_, user_box, bgr.size(), face);
   last_roi_ = g.valid ? g.roi : cv::Rect();
@@ -96,7 +97,7 @@ HandResult HandDetector::detect(const cv::Mat& bgr, const cv::Rect2f& user_box, 
   const int dropped = drop_large_blobs(mask_, g, components, keep_unopened ? &unopened_ : nullptr);
   find_hanging_forearms(g, hanging_rule ? components : 0);
   HandResult res = run(mask_, g.roi.tl(), g);
-  const int armless = out_on_an_arm(bgr, arm_skin, g, res);
+  const int armless = out_on_an_arm(bgr, arm_skin, g, clothing, res);
   front_not_a_forearm(g, res);
   res.blobs_dropped = dropped;
   res.armless_dropped = armless;
@@ -125,14 +126,14 @@ const cv::Mat& HandDetector::make_skin_mask(const cv::Mat& bgr, const SkinClassi
   return keep_unopened ? unopened_ : mask_;
 }
 
-int HandDetector::out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& g, HandResult& res) {
+int HandDetector::out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& g,
+                                const ClothingColours* clothing, HandResult& res) {
   // An OUT hand hangs on an arm: its skin component goes when no path of arm-coloured pixels (skin or the user's
   // own clothing) joins it to the torso, and Alg. 1 looks again; after a few, skin outside the box goes.
   int armless = 0;
-  bool torso_known = false;
   while (res.kind == HandKind::Out && params_.arm_connected) {
-    if (!torso_known) learn_torso_colours(bgr, g), torso_known = true;
-    if (on_an_arm(bgr, arm_skin, g, res.hand)) break;
+    if (!clothing) own_clothing_.learn(bgr, torso_rect(params_, g)), clothing = &own_clothing_;
+    if (on_an_arm(bgr, arm_skin, g, *clothing, res.hand)) break;
     if (++armless < kMaxDroppedCandidates) {
       erase_component(g, res.hand);
     } else {
@@ -208,34 +209,19 @@ cv::Rect torso_rect(const HandsParams& p, const HandGeometry& g) {
   return {x0, y0, x1 - x0, y1 - y0};
 }
 
-void HandDetector::learn_torso_colours(const cv::Mat& bgr, const HandGeometry& g) {
-  // The clothing of the torso (torso_rect): a sleeve is the same.
-  torso_hist_.assign(kTorsoBins * kTorsoBins * kTorsoBins, 0);
-  torso_pixels_ = 0;
-  const cv::Rect t = torso_rect(params_, g);
-  for (int y = t.y; y < t.br().y; ++y) {
-    const uint8_t* p = bgr.ptr<uint8_t>(y) + 3 * t.x;
-    for (int x = t.x; x < t.br().x; ++x, p += 3) {
-      ++torso_hist_[static_cast<size_t>(torso_bin(p))];
-      ++torso_pixels_;
-    }
-  }
-}
-
-bool HandDetector::on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const HandGeometry& g, cv::Point hand) {
+bool HandDetector::on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const HandGeometry& g,
+                             const ClothingColours& clothing, cv::Point hand) {
   // Arm-coloured pixels of the search rectangle: the skin (a skin-coloured wall dropped, so it cannot join a
-  // dome to the user), or a colour with >= 0.5 % of the torso's clothing; closed by the arm radius so a watch or
-  // a shadow at the wrist does not cut the arm. Candidates erased before this one were joined to no torso, so
+  // dome to the user), or a colour worn on the torso (a sleeve is the same); closed by the arm radius so a watch
+  // or a shadow at the wrist does not cut the arm. Candidates erased before this one were joined to no torso, so
   // they join no other hand to it either.
   const cv::Mat roi = bgr(g.roi);
   arm_.create(roi.size(), CV_8UC1);
-  const int64_t min_count = std::max<int64_t>(1, torso_pixels_ / kClothingColourOneIn);
   for (int y = 0; y < roi.rows; ++y) {
     const uint8_t* p = roi.ptr<uint8_t>(y);
     const uint8_t* m = skin.ptr<uint8_t>(y);
     uint8_t* a = arm_.ptr<uint8_t>(y);
-    for (int x = 0; x < roi.cols; ++x, p += 3)
-      a[x] = m[x] || torso_hist_[static_cast<size_t>(torso_bin(p))] >= min_count ? 1 : 0;
+    for (int x = 0; x < roi.cols; ++x, p += 3) a[x] = m[x] || clothing.worn(p) ? 1 : 0;
   }
   // Capped at the search rectangle's size, as the opening radius (hand_geometry): no larger kernel differs.
   const int r = std::max(1, static_cast<int>(std::lround(std::min<double>(params_.arm_radius_ratio * g.width,

@@ -23,6 +23,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "hands/clothing_colours.hpp"
 #include "hands/hands_params.hpp"
 #include "hands/skin_model.hpp"
 
@@ -80,8 +81,10 @@ class HandDetector {
   HandDetector(const HandsParams& params, SkinClassifier skin);
 
   // Whole stage for one frame (CV_8UC3 BGR), with the detector's own classifier or `skin` (e.g. an adapted one).
+  // clothing: the user's clothing colours learnt from this frame's torso (torso_rect of this box and face), which
+  // the arm test reads; none: the detector learns them from this frame itself.
   HandResult detect(const cv::Mat& bgr, const cv::Rect2f& user_box, const SkinClassifier* skin = nullptr,
-                    const std::optional<cv::Rect2f>& face = std::nullopt);
+                    const std::optional<cv::Rect2f>& face = std::nullopt, const ClothingColours* clothing = nullptr);
 
   // Alg. 1 then Alg. 2 on a ready skin mask (CV_8UC1, nonzero = skin) whose top-left pixel is image pixel
   // origin. Removals are NOT applied here: the mask is used as given (detect() applies them first).
@@ -102,8 +105,9 @@ class HandDetector {
   const cv::Mat& make_skin_mask(const cv::Mat& bgr, const SkinClassifier& skin, const HandGeometry& geometry);
   // Alg. 1's result kept only for a hand joined to the torso by an arm (arm_connected): each armless candidate
   // is erased and Alg. 1 runs again, after kMaxDroppedCandidates the skin outside the box goes. Returns how
-  // many were dropped.
-  int out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& geometry, HandResult& res);
+  // many were dropped. clothing: as detect()'s.
+  int out_on_an_arm(const cv::Mat& bgr, const cv::Mat& arm_skin, const HandGeometry& geometry,
+                    const ClothingColours* clothing, HandResult& res);
   // Alg. 2's result dropped while it is a hanging forearm or torso-sized, and Alg. 2 run again; after
   // kMaxDroppedCandidates no hand (res.upright_dropped counts them either way).
   void front_not_a_forearm(const HandGeometry& geometry, HandResult& res);
@@ -115,13 +119,11 @@ class HandDetector {
   void find_hanging_forearms(const HandGeometry& geometry, int n);
   // Clears the skin component of mask_ holding an image pixel (a candidate this frame will not take).
   void erase_component(const HandGeometry& geometry, cv::Point pixel);
-  void learn_torso_colours(const cv::Mat& bgr, const HandGeometry& geometry);
-  // Whether arm-coloured pixels (`skin` over the search rectangle, the torso's clothing colours) join the
-  // hand to the torso.
-  bool on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const HandGeometry& geometry, cv::Point hand);
-  static int torso_bin(const uint8_t* bgr) { return ((bgr[0] >> 4) * kTorsoBins + (bgr[1] >> 4)) * kTorsoBins + (bgr[2] >> 4); }
+  // Whether arm-coloured pixels (`skin` over the search rectangle, the colours `clothing` says are worn) join
+  // the hand to the torso.
+  bool on_an_arm(const cv::Mat& bgr, const cv::Mat& skin, const HandGeometry& geometry,
+                 const ClothingColours& clothing, cv::Point hand);
 
-  static constexpr int kTorsoBins = 16;             // per channel, for the clothing colours
   static constexpr int kMaxDroppedCandidates = 3;   // then the algorithm gives up on this frame
 
   HandsParams params_;
@@ -129,8 +131,7 @@ class HandDetector {
   cv::Mat mask_, unopened_, integral_, labels_, arm_, stats_, centroids_;
   std::vector<uint8_t> blob_dropped_;  //!< per label of labels_: cleared by drop_large_blobs
   std::array<bool, 2> hanging_{};  //!< a forearm hangs at rest on the image's left / right side of p_uc
-  std::vector<int64_t> torso_hist_;
-  int64_t torso_pixels_ = 0;
+  ClothingColours own_clothing_;  //!< learnt here when detect() is given no clothing colours
   cv::Rect last_roi_;
 };
 

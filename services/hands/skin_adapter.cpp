@@ -15,20 +15,13 @@ SkinAdapter::SkinAdapter(const SkinParams& params, const SkinModel& prior)
 void SkinAdapter::reset() {
   user_.clear();
   scene_.clear();
-  clothing_.clear();
   user_smooth_.clear();
   user_colour_.clear();
-  user_samples_ = scene_samples_ = clothing_samples_ = 0;
+  user_samples_ = scene_samples_ = clothing_samples_seen_ = 0;
   frames_since_rebuild_ = 0;
   dirty_ = built_ = false;
   adapted_ = prior_classifier_;
   changed_fraction_ = 0;
-}
-
-void SkinAdapter::blend(std::vector<double>& model, const std::vector<double>& sample, double total, double rate, bool first) {
-  const double keep = first ? 0.0 : 1.0 - rate, add = (first ? 1.0 : rate) / total;
-  if (model.empty()) model.assign(sample.size(), 0.0);
-  for (size_t i = 0; i < model.size(); ++i) model[i] = keep * model[i] + add * sample[i];
 }
 
 void SkinAdapter::learn_user(const cv::Mat& bgr, const cv::Rect2f& face) {
@@ -53,7 +46,7 @@ void SkinAdapter::learn_user(const cv::Mat& bgr, const cv::Rect2f& face) {
     }
   }
   if (n < a.min_face_samples) return;  // too small or not a face: nothing learnt
-  blend(user_, sample_, n, a.user_rate, user_samples_ == 0);
+  blend_histogram(user_, sample_, n, a.user_rate, user_samples_ == 0);
   user_samples_ += static_cast<int64_t>(n);
   // Smoothed once per face (about once a second), not at every rebuild.
   user_smooth_ = smooth_histogram(user_, prior_.bins(), a.smoothing_sigma);
@@ -65,21 +58,18 @@ void SkinAdapter::learn_user(const cv::Mat& bgr, const cv::Rect2f& face) {
   dirty_ = true;
 }
 
-double SkinAdapter::sample_pixels(const cv::Mat& bgr, const cv::Rect& r, bool inside, const std::vector<uint8_t>* skip) {
+double SkinAdapter::sample_outside(const cv::Mat& bgr, const cv::Rect& exclude) {
   CV_Assert(bgr.type() == CV_8UC3);
   const int stride = p_.adapt.scene_stride;
   sample_.assign(prior_.table().size(), 0.0);
   double n = 0;
   for (int y = stride / 2; y < bgr.rows; y += stride) {
     const uint8_t* row = bgr.ptr<uint8_t>(y);
-    const bool row_in = y >= r.y && y < r.br().y;
-    if (inside && !row_in) continue;
+    const bool row_in = y >= exclude.y && y < exclude.br().y;
     for (int x = stride / 2; x < bgr.cols; x += stride) {
-      if ((row_in && x >= r.x && x < r.br().x) != inside) continue;
+      if (row_in && x >= exclude.x && x < exclude.br().x) continue;
       const uint8_t* px = row + 3 * x;
-      const auto bin = static_cast<size_t>(prior_.bin(px[0], px[1], px[2]));
-      if (skip && (*skip)[bin]) continue;
-      sample_[bin] += 1;
+      sample_[static_cast<size_t>(prior_.bin(px[0], px[1], px[2]))] += 1;
       n += 1;
     }
   }
@@ -88,41 +78,34 @@ double SkinAdapter::sample_pixels(const cv::Mat& bgr, const cv::Rect& r, bool in
 
 void SkinAdapter::learn_scene(const cv::Mat& bgr, const cv::Rect& exclude) {
   if (!p_.adapt.enabled || p_.adapt.scene_weight <= 0) return;
-  const double n = sample_pixels(bgr, exclude, false);
+  const double n = sample_outside(bgr, exclude);
   if (n < p_.adapt.min_scene_samples) return;
-  blend(scene_, sample_, n, p_.adapt.scene_rate, scene_samples_ == 0);
+  blend_histogram(scene_, sample_, n, p_.adapt.scene_rate, scene_samples_ == 0);
   scene_samples_ += static_cast<int64_t>(n);
   dirty_ = true;
 }
 
-void SkinAdapter::learn_clothing(const cv::Mat& bgr, const cv::Rect& torso) {
-  // Only once the user's skin is known from a face: without it a hand held in front of the body, a bare neck or
-  // chest would be learnt as clothing and the user's hands stop being skin (real photos, annotation box: FRONT
-  // found 5 -> 1 of 22, OUT 5 -> 3 of 12).
-  if (!p_.adapt.enabled || p_.adapt.clothing_weight <= 0 || torso.empty() || user_colour_.empty()) return;
-  const double n = sample_pixels(bgr, torso, true, &user_colour_);
-  if (n <= 0) return;
-  blend(clothing_, sample_, n, p_.adapt.clothing_rate, clothing_samples_ == 0);
-  clothing_samples_ += static_cast<int64_t>(n);
-  dirty_ = true;
-}
-
-const SkinClassifier& SkinAdapter::classifier_for_frame() {
+const SkinClassifier& SkinAdapter::classifier_for_frame(const ClothingColours* clothing) {
+  const int64_t clothing_samples = clothing ? clothing->samples() : 0;
+  if (clothing_samples != clothing_samples_seen_) dirty_ = true;
+  clothing_samples_seen_ = clothing_samples;
   ++frames_since_rebuild_;
-  if (dirty_ && (!built_ || frames_since_rebuild_ >= p_.adapt.rebuild_frames)) rebuild();
+  if (dirty_ && (!built_ || frames_since_rebuild_ >= p_.adapt.rebuild_frames)) rebuild(clothing);
   return adapted_;
 }
 
-void SkinAdapter::rebuild() {
+void SkinAdapter::rebuild(const ClothingColours* clothing) {
   frames_since_rebuild_ = 0;
   dirty_ = false;
   const auto& a = p_.adapt;
   const int bins = prior_.bins();
   const std::vector<double>& user = user_smooth_;
   const std::vector<double> scene = scene_.empty() ? scene_ : smooth_histogram(scene_, bins, a.smoothing_sigma);
-  const std::vector<double> clothing = clothing_.empty() ? clothing_ : smooth_histogram(clothing_, bins, a.smoothing_sigma);
+  const std::vector<double> clothing_smooth = !clothing || clothing->histogram().empty()
+                                                  ? std::vector<double>()
+                                                  : smooth_histogram(clothing->histogram(), bins, a.smoothing_sigma);
   const double wu = user.empty() ? 0.0 : a.user_weight, ws = scene.empty() ? 0.0 : a.scene_weight;
-  const double wc = clothing.empty() ? 0.0 : a.clothing_weight;
+  const double wc = clothing_smooth.empty() ? 0.0 : a.clothing_weight;
   const double ps = prior_.skin_prior(), pn = 1.0 - ps, t = p_.threshold;
   const auto& ls = prior_.skin_likelihood();
   const auto& ln = prior_.non_likelihood();
@@ -131,7 +114,7 @@ void SkinAdapter::rebuild() {
   size_t changed = 0;
   for (size_t i = 0; i < mask.size(); ++i) {
     const double s = wu > 0 ? a.table_share * ls[i] + wu * user[i] : ls[i];
-    const double o = (1 - ws - wc) * ln[i] + (ws > 0 ? ws * scene[i] : 0.0) + (wc > 0 ? wc * clothing[i] : 0.0);
+    const double o = (1 - ws - wc) * ln[i] + (ws > 0 ? ws * scene[i] : 0.0) + (wc > 0 ? wc * clothing_smooth[i] : 0.0);
     const double total = s * ps + o * pn;
     mask[i] = total > 0 && s * ps > t * total ? 1 : 0;
     changed += mask[i] != table[i];

@@ -10,10 +10,12 @@
 namespace gpilot {
 
 SkinHandMethod::SkinHandMethod(const HandsParams& params, const SkinModel& prior, std::string model_path)
-    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior), model_path_(std::move(model_path)) {}
+    : detector_(params, SkinClassifier(prior, params.skin.threshold)), adapter_(params.skin, prior),
+      clothing_(params.skin.adapt, prior.bins()), model_path_(std::move(model_path)) {}
 
 void SkinHandMethod::reset() {
   adapter_.reset();
+  clothing_.reset();
   judged_with_ = nullptr;
   track_id_ = -1;
   last_face_.reset();
@@ -53,10 +55,11 @@ HandResult SkinHandMethod::detect(const cv::Mat& bgr, const UserView& user) {
                                       cv::Point(px(std::ceil(box.br().x + m)), px(std::ceil(box.br().y)))) &
                              cv::Rect(0, 0, bgr.cols, bgr.rows);
     adapter_.learn_scene(bgr, exclude);
-    adapter_.learn_clothing(bgr, torso_rect(p, g));
   }
-  judged_with_ = &adapter_.classifier_for_frame();
-  return detector_.detect(bgr, box, judged_with_, face_now);
+  // Learnt on every frame, an empty torso (an invalid box) leaving nothing worn: the detector reads this frame's.
+  clothing_.learn(bgr, g.valid ? torso_rect(p, g) : cv::Rect(), adapter_.user_skin_colours());
+  judged_with_ = &adapter_.classifier_for_frame(&clothing_);
+  return detector_.detect(bgr, box, judged_with_, face_now, &clothing_);
 }
 
 HandsOutput SkinHandMethod::observe(const cv::Mat& bgr, const UserView& user, int64_t /*utime*/) {

@@ -1,7 +1,9 @@
-// The skin method (hands.method skin, the paper's): learns the user's skin (from the face the tracker found)
-// and the scene's colours (around the user) on top of the trained skin table, then runs the paper's Alg. 1/2
-// (HandDetector) with the adapted classifier on the tracker's box. The state depends only on the frames and user
-// views seen; a new track_id starts over. Pure: no LCM, no clock. Built by make_hand_method (hands_core_factory.hpp).
+// The skin method (hands.method skin, the paper's): learns the user's skin (from the face the tracker found),
+// the scene's colours (around the user) and the user's clothing colours (the torso, ClothingColours: once a
+// frame, for both the skin model and the arm test) on top of the trained skin table, then runs the paper's
+// Alg. 1/2 (HandDetector) with the adapted classifier on the tracker's box. The state depends only on the
+// frames and user views seen; a new track_id starts over. Pure: no LCM, no clock. Built by make_hand_method
+// (hands_core_factory.hpp).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +12,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "hands/clothing_colours.hpp"
 #include "hands/hand_detector.hpp"
 #include "hands/hand_method.hpp"
 #include "hands/hands_params.hpp"
@@ -31,8 +34,9 @@ class SkinHandMethod : public HandMethod {
   std::string description() const override { return "skin model " + model_path_; }
 
   // Alg. 1/2's own result for a tracked user: learns from this frame (user skin from the face, the scene outside
-  // the search rectangle), then detects on the user box as given (the tracker's). bgr: CV_8UC3. A frame without
-  // colour (hands.skin.min_colour_fraction) gives NONE with `colourless` set, and nothing is learnt from it.
+  // the search rectangle, the clothing from the torso), then detects on the user box as given (the tracker's).
+  // bgr: CV_8UC3. A frame without colour (hands.skin.min_colour_fraction) gives NONE with `colourless` set, and
+  // nothing is learnt from it.
   HandResult detect(const cv::Mat& bgr, const UserView& user);
 
   SkinAdaptation adaptation() const {
@@ -45,6 +49,7 @@ class SkinHandMethod : public HandMethod {
  private:
   HandDetector detector_;
   SkinAdapter adapter_;
+  ClothingColours clothing_;  //!< learnt from each frame's torso; read by adapter_ (C) and detector_ (the arm test)
   std::string model_path_;
   int32_t track_id_ = -1;
   const SkinClassifier* judged_with_ = nullptr;  //!< the classifier the last detect() used (none: the table's)

@@ -18,12 +18,6 @@ std::string trim_end(std::string s) {
   return s;
 }
 
-int log2_exact(int bins) {
-  for (int k = 1; k <= 8; ++k)
-    if ((1 << k) == bins) return k;
-  return -1;
-}
-
 // One pass of a 1-D Gaussian along one axis of a bins^3 volume (zero outside), line by line. The learnt
 // histograms are sparse (a scene, a shirt, a face fill a few hundred of 32768 bins): a line that is all zero
 // stays zero, and is skipped (the smoothing was 15 % of the hands stage's CPU). Each output sums its taps in
@@ -120,6 +114,19 @@ void fill_index(int bins, std::array<int32_t, 256>& qb, std::array<int32_t, 256>
 }
 
 }  // namespace
+
+int log2_exact(int bins) {
+  for (int k = 1; k <= 8; ++k)
+    if ((1 << k) == bins) return k;
+  return -1;
+}
+
+void blend_histogram(std::vector<double>& model, const std::vector<double>& sample, double total, double rate,
+                     bool first) {
+  const double keep = first ? 0.0 : 1.0 - rate, add = (first ? 1.0 : rate) / total;
+  if (model.empty()) model.assign(sample.size(), 0.0);
+  for (size_t i = 0; i < model.size(); ++i) model[i] = keep * model[i] + add * sample[i];
+}
 
 SkinHistogram::SkinHistogram(int bins) : bins_(bins), shift_(8 - log2_exact(bins)) {
   if (log2_exact(bins) < 1) throw SkinModelError("bins per channel must be a power of two from 2 to 256, not " + std::to_string(bins));

@@ -17,8 +17,15 @@ class SkinModelError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// k for bins per channel = 2^k (k 1..8), else -1.
+int log2_exact(int bins);
+
 // A 3-D Gaussian blur (sigma in bins, truncated at 3 sigma, zero outside) of a bins^3 histogram, b-major.
 std::vector<double> smooth_histogram(std::vector<double> v, int bins, double sigma);
+// A learnt colour histogram with decay: `sample` (counts, `total` of them) blended into `model` (normalised) at
+// `rate`, or taking its place when `first`. An empty model starts at zero.
+void blend_histogram(std::vector<double>& model, const std::vector<double>& sample, double total, double rate,
+                     bool first);
 
 // Counts of skin and non-skin colours, the raw material of a SkinModel.
 class SkinHistogram {
@@ -105,6 +112,7 @@ class SkinClassifier {
   SkinClassifier(int bins, std::vector<uint8_t> mask_table);
 
   bool empty() const { return mask_table_.empty(); }
+  int bins() const { return 1 << bits_; }  //!< per channel
   bool is_skin(uint8_t b, uint8_t g, uint8_t r) const {
     return mask_table_[static_cast<size_t>(qb_[b] + qg_[g] + qr_[r])] != 0;
   }

@@ -10,6 +10,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "hands/clothing_colours.hpp"
 #include "hands/skin_adapter.hpp"
 #include "paths.hpp"
 
@@ -92,30 +93,37 @@ TEST_F(SkinAdapterTest, ResetGivesTheTableBackAndTheSameInputsGiveTheSameModel) 
 TEST_F(SkinAdapterTest, AShirtTheTableCallsSkinIsTheShirtOnceTheUsersSkinIsKnown) {
   ASSERT_GT(model.level(58, 90, 184), 191);
   SkinAdapter a(params, model);
+  ClothingColours clothing(params.adapt, model.bins());
+  const auto skin_with_clothing = [&](SkinAdapter& s, const ClothingColours& c, const cv::Scalar& colour) {
+    return s.classifier_for_frame(&c).is_skin(static_cast<uint8_t>(colour[0]), static_cast<uint8_t>(colour[1]),
+                                              static_cast<uint8_t>(colour[2]));
+  };
   // GIVEN a user in an orange shirt with a hand of their own skin in front of it, on a blue scene
   cv::Mat frame(240, 320, CV_8UC3, kBlue);
   const cv::Rect torso(100, 80, 80, 100);
   frame(torso).setTo(kOrange);
   frame(cv::Rect(130, 120, 16, 16)).setTo(kHand);
-  // WHEN the torso is learnt before any face THEN nothing is learnt: the hand in front could be taken for clothing
-  a.learn_clothing(frame, torso);
-  EXPECT_EQ(a.clothing_samples(), 0);
-  EXPECT_TRUE(skin(a, kOrange));
+  // WHEN the torso is learnt before any face THEN the skin model learns nothing: the hand in front could be taken
+  // for clothing
+  clothing.learn(frame, torso, a.user_skin_colours());
+  EXPECT_EQ(clothing.samples(), 0);
+  EXPECT_TRUE(skin_with_clothing(a, clothing, kOrange));
   // WHEN the face shows the user's skin (the hand's tone) and the torso is learnt
   frame(cv::Rect(110, 10, 60, 60)).setTo(kHand);
   a.learn_user(frame, cv::Rect2f(110, 10, 60, 60));
-  a.learn_clothing(frame, torso);
+  clothing.learn(frame, torso, a.user_skin_colours());
   // THEN the shirt is no longer skin and the hand still is: its colour was kept out of the clothing
-  EXPECT_EQ(a.clothing_samples(), 20 * 25 - 4 * 4);  // every 4th pixel of the torso but the hand's
-  EXPECT_FALSE(skin(a, kOrange));
-  EXPECT_TRUE(skin(a, kHand));
+  EXPECT_EQ(clothing.samples(), 20 * 25 - 4 * 4);  // every 4th pixel of the torso but the hand's
+  EXPECT_FALSE(skin_with_clothing(a, clothing, kOrange));
+  EXPECT_TRUE(skin_with_clothing(a, clothing, kHand));
   // AND with clothing_weight 0 the shirt stays skin (the rule off)
   params.adapt.clothing_weight = 0;
   SkinAdapter off(params, model);
+  ClothingColours off_clothing(params.adapt, model.bins());
   off.learn_user(frame, cv::Rect2f(110, 10, 60, 60));
-  off.learn_clothing(frame, torso);
-  EXPECT_EQ(off.clothing_samples(), 0);
-  EXPECT_TRUE(skin(off, kOrange));
+  off_clothing.learn(frame, torso, off.user_skin_colours());
+  EXPECT_EQ(off_clothing.samples(), 0);
+  EXPECT_TRUE(skin_with_clothing(off, off_clothing, kOrange));
 }
 
 TEST_F(SkinAdapterTest, OffItIsTheTable) {
