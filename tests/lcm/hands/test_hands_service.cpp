@@ -11,6 +11,7 @@
 #include "bus_node.hpp"
 #include "child_process.hpp"
 #include "image_codec.hpp"
+#include "user_track_fixture.hpp"
 
 using namespace gpilot;
 
@@ -36,20 +37,7 @@ int64_t t0() {
 }
 
 user_track_t track(int64_t seq, int8_t status = user_track_t::STATUS_TRACKING) {
-  user_track_t t{};
-  t.utime = t0() + seq;
-  t.seq = seq;
-  t.status = status;
-  t.box[0] = 100;
-  t.box[1] = 100;
-  t.box[2] = 80;
-  t.box[3] = 160;
-  t.confidence = 10;
-  t.init_source = user_track_t::INIT_MANUAL;
-  t.track_id = 1;
-  t.image_width = 400;
-  t.image_height = 400;
-  return t;
+  return test::user_track_400(seq, t0() + seq, status);
 }
 
 }  // namespace

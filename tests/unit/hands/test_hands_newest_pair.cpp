@@ -11,29 +11,9 @@
 #include "config.hpp"
 #include "hands/hands_service.hpp"
 #include "image_codec.hpp"
+#include "user_track_fixture.hpp"
 
 using namespace gpilot;
-
-namespace {
-
-user_track_t tracking(int64_t seq) {
-  user_track_t t{};
-  t.utime = 1000 + seq;
-  t.seq = seq;
-  t.status = user_track_t::STATUS_TRACKING;
-  t.box[0] = 100;
-  t.box[1] = 100;
-  t.box[2] = 80;
-  t.box[3] = 160;
-  t.confidence = 10;
-  t.init_source = user_track_t::INIT_MANUAL;
-  t.track_id = 1;
-  t.image_width = 400;
-  t.image_height = 400;
-  return t;
-}
-
-}  // namespace
 
 TEST(HandsNewestPair, PairsThatArriveTogetherGiveTheNewestAndCountTheRest) {
   BusNode node("gpilot-hands", "memq://");
@@ -45,7 +25,7 @@ TEST(HandsNewestPair, PairsThatArriveTogetherGiveTheNewestAndCountTheRest) {
     frame.seq = seq;
     frame.utime = 1000 + seq;
     node.publish("CAMERA", frame);
-    node.publish("USER_TRACK", tracking(seq));
+    node.publish("USER_TRACK", test::user_track_400(seq, 1000 + seq));
   };
 
   // GIVEN three pairs on the bus before the stage's loop turns (it was busy observing)
