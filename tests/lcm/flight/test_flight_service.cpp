@@ -22,6 +22,7 @@
 #include "mavlink/messages.hpp"
 #include "run_command.hpp"
 #include "udp_socket.hpp"
+#include "user_track_fixture.hpp"
 
 namespace gpilot {
 namespace {
@@ -113,19 +114,7 @@ TEST(FlightService, PointingMovesTheSimulatedDroneWestOnlyWhileEngaged) {
   int64_t seq = 0, last_frame_utime = 0;
   auto frame = [&] {
     const int64_t now = last_frame_utime = wall_utime();
-    user_track_t t{};
-    t.utime = now;
-    t.seq = seq;
-    t.status = user_track_t::STATUS_TRACKING;
-    t.box[0] = 270;
-    t.box[1] = 100;
-    t.box[2] = 100;
-    t.box[3] = 300;
-    t.confidence = 10;
-    t.init_source = user_track_t::INIT_MANUAL;
-    t.track_id = 1;
-    t.image_width = 640;
-    t.image_height = 480;
+    const user_track_t t = test::manual_track(seq, now, {270, 100, 100, 300}, 640, 480);
     bus.publish("USER_TRACK", t);
     hand_obs_t h{};
     h.utime = now;
