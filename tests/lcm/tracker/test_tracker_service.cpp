@@ -306,7 +306,9 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
     req.box[3] = 65;
     req.source = "test_lcm_tracker";
     bus.publish("TRACKER_INIT", req);
-    bus.spin_once(200);
+    // CAMERA comes on the frames' own socket, so a frame sent now could be dispatched before the box: the
+    // frames wait until HEALTH counts the box in.
+    ASSERT_TRUE(spin_until([&] { return stage.last_health.messages_in >= 1; }, 5000)) << "TRACKER_INIT not taken";
     for (size_t i = 0; i < frames.size(); ++i) {
       // JPEG, as the camera of ./deploy/run: 53 raw frames at once would overflow the socket's buffer.
       bus.publish("CAMERA", mat_to_image(frames[i], wall_utime(), static_cast<int64_t>(i), image_t::PIXEL_FORMAT_JPEG));
