@@ -206,7 +206,11 @@ struct LogScan {
   std::map<std::string, std::string> logged_yaml;  // process -> YAML
   bool align_inits = false;
   InitAlign align;
-  std::vector<std::vector<uint8_t>> inits_logged;  // every aligned init's bytes, in log order
+  struct LoggedInit {
+    int64_t timestamp;  // when the recorder heard it: the replay judges it there (bus.time_window_s)
+    std::vector<uint8_t> bytes;
+  };
+  std::vector<LoggedInit> inits_logged;  // every aligned init, in log order
 };
 
 LogScan scan_log(const ReplayOptions& o, const std::vector<std::string>& chain, const std::set<std::string>& inputs,
@@ -243,7 +247,7 @@ LogScan scan_log(const ReplayOptions& o, const std::vector<std::string>& chain, 
           if (m->command == tracker_init_t::COMMAND_SET_BOX) scan.align.set_box({m->box[0], m->box[1], m->box[2], m->box[3]});
           else scan.align.reset();
           const auto* p = static_cast<const uint8_t*>(ev->data);
-          scan.inits_logged.emplace_back(p, p + ev->datalen);
+          scan.inits_logged.push_back({ev->timestamp, std::vector<uint8_t>(p, p + ev->datalen)});
         }
       }
     }
@@ -437,8 +441,11 @@ class ChainReplay {
     ++n_inputs_;
     if (scan_.align_inits && ev.channel == tc::kCamera.name)
       for (const size_t i : scan_.align.due_before(seq)) {
-        node_.publish_raw(tc::kTrackerInit.name, scan_.inits_logged[i].data(), scan_.inits_logged[i].size());
+        const LogScan::LoggedInit& init = scan_.inits_logged[i];
+        node_.set_log_time(init.timestamp);
+        node_.publish_raw(tc::kTrackerInit.name, init.bytes.data(), init.bytes.size());
         node_.drain();
+        node_.set_log_time(now_ts_);
       }
     if (pair_hold_ && pair_hold_->pairs(ev.channel)) {
       for (const auto& m : pair_hold_->add(ev.channel, seq, ev.timestamp, std::vector<uint8_t>(p, p + ev.datalen))) {

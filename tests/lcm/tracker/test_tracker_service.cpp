@@ -23,6 +23,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bus_node.hpp"
+#include "bus_params.hpp"
 #include "child_process.hpp"
 #include "image_codec.hpp"
 #include "sequence.hpp"
@@ -51,6 +52,16 @@ struct TrackerUnderTest {
     return done();
   }
   bool wait_for_health() { return spin_until([this] { return heard; }, 10000); }
+  // Sends a TRACKER_INIT and returns once HEALTH counts it in. CAMERA comes on the frames' own socket, so a
+  // frame sent right after it could be dispatched first. Call it with the stage idle.
+  bool give(tracker_init_t req) {
+    const int64_t report = last_health.seq;
+    spin_until([&] { return last_health.seq > report; }, 3000);  // a count taken after all sent before
+    const int64_t in = last_health.messages_in;
+    req.utime = wall_utime();  // the bus rejects a utime far from its arrival
+    bus.publish("TRACKER_INIT", req);
+    return spin_until([&] { return last_health.messages_in > in; }, 5000);
+  }
 
   static std::vector<std::string> command(const std::vector<std::string>& extra) {
     std::vector<std::string> argv{std::string(GPILOT_BIN_DIR) + "/gpilot-tracker", "--lcm-url", kUrl};
@@ -86,8 +97,6 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
 
   // GIVEN a manual box, then frames 0..15 with two malformed CAMERA messages after frame 7
   tracker_init_t req{};
-  const int64_t t0 = wall_utime();  // the bus rejects a utime far from its arrival
-  req.utime = t0;
   req.seq = 1;
   req.command = tracker_init_t::COMMAND_SET_BOX;
   req.box[0] = static_cast<float>(init.x);
@@ -95,8 +104,8 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   req.box[2] = static_cast<float>(init.width);
   req.box[3] = static_cast<float>(init.height);
   req.source = "test_lcm_tracker";
-  bus.publish("TRACKER_INIT", req);
-  bus.spin_once(100);
+  ASSERT_TRUE(stage.give(req)) << "TRACKER_INIT not taken";
+  const int64_t t0 = wall_utime();  // the bus rejects a utime far from its arrival
   auto send = [&](int64_t seq) {
     bus.publish("CAMERA", mat_to_image(frames[static_cast<size_t>(seq)], t0 + 5000 + 33000 * seq, seq));
     // One frame at a time: the answer comes before the next frame, so that no frame is dropped.
@@ -142,12 +151,10 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
 
   // GIVEN a reset, WHEN a frame with a frontal face comes (the astronaut photograph in a 640x360 frame)
   tracker_init_t reset{};
-  reset.utime = wall_utime();
   reset.seq = 2;
   reset.command = tracker_init_t::COMMAND_RESET;
   reset.source = "test_lcm_tracker";
-  bus.publish("TRACKER_INIT", reset);
-  bus.spin_once(100);
+  ASSERT_TRUE(stage.give(reset)) << "TRACKER_INIT reset not taken";
   const cv::Mat a = cv::imread(std::string(GPILOT_SOURCE_DIR) + "/data/people/astronaut.png", cv::IMREAD_COLOR);
   ASSERT_FALSE(a.empty());
   cv::Mat face_frame(360, 640, CV_8UC3, cv::Scalar(90, 90, 90));
@@ -297,7 +304,6 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
       });
     // WHEN a manual box, then every frame at once
     tracker_init_t req{};
-    req.utime = wall_utime();
     req.seq = 1;
     req.command = tracker_init_t::COMMAND_SET_BOX;
     req.box[0] = 261;
@@ -305,10 +311,10 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
     req.box[2] = 39;
     req.box[3] = 65;
     req.source = "test_lcm_tracker";
-    bus.publish("TRACKER_INIT", req);
-    // CAMERA comes on the frames' own socket, so a frame sent now could be dispatched before the box: the
-    // frames wait until HEALTH counts the box in.
-    ASSERT_TRUE(spin_until([&] { return stage.last_health.messages_in >= 1; }, 5000)) << "TRACKER_INIT not taken";
+    ASSERT_TRUE(stage.give(req)) << "TRACKER_INIT not taken";
+    // The camera starts later than bus.time_window_s after the box: the replay judges the box at its arrival,
+    // not at the frame it is given before (where the bus would call it stale).
+    stage.spin_until([] { return false; }, static_cast<int>(BusParams{}.time_window_s * 1000) + 300);
     for (size_t i = 0; i < frames.size(); ++i) {
       // JPEG, as the camera of ./deploy/run: 53 raw frames at once would overflow the socket's buffer.
       bus.publish("CAMERA", mat_to_image(frames[i], wall_utime(), static_cast<int64_t>(i), image_t::PIXEL_FORMAT_JPEG));
