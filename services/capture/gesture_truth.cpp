@@ -20,12 +20,12 @@ bool inside(const cv::Point2f& p, float x0, float y0, float x1, float y1) {
 }  // namespace
 
 ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Point2f, 2>& hands,
-                                 const cv::Size& image, float hand_size) {
+                                 const cv::Size& image, float hand_size, const std::optional<TorsoCentres>& centres) {
   using namespace truth_rules;
   ExpectedCommand e;
   const float cx = box.x + 0.5f * box.width;
-  e.shoulder_centre = {cx, static_cast<float>(box.y + kShoulderCentreRatio * box.height)};
-  e.body_centre = {cx, static_cast<float>(box.y + kBodyCentreRatio * box.height)};
+  e.shoulder_centre = centres ? centres->shoulder_centre : cv::Point2f(cx, static_cast<float>(box.y + kShoulderCentreRatio * box.height));
+  e.body_centre = centres ? centres->body_centre : cv::Point2f(cx, static_cast<float>(box.y + kBodyCentreRatio * box.height));
   e.kind = hand_obs_t::KIND_NONE;
   e.mode = gesture_cmd_t::MODE_HOVER;
   const float x1 = box.x + box.width, y1 = box.y + box.height;

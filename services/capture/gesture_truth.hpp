@@ -4,6 +4,8 @@
 // else the stage's defaults as they stood when the truth was fixed), never the config of the stages it judges,
 // so a mis-set stage scores lower instead of moving its truth along.
 //
+// p_uc and p_bc are the person's own (the figure's shoulder joints, and midway from them to its hip joints), which
+// the paper estimates on the box (0.2 and 0.5 of its height) and the pose method from landmarks.
 // Simplifications against the real hands stage, which sees skin pixels and not hands:
 // - a hand is a point (its centre); F_skin is taken equal for every hand (a full hand square), so the
 //   argmax of Alg. 1 reduces to the largest |p_uc.x - p.x| + λ2 (p_uc.y - p.y) among the hands outside the
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include <opencv2/core.hpp>
 
@@ -42,9 +45,15 @@ constexpr double kLambda2 = 0.2;              // Alg. 1's weight of the height a
 constexpr double kLambda4 = 0.5;              // Alg. 3: UP/DOWN when |y| > |λ4 x| (the paper's λ4)
 }  // namespace truth_rules
 
+// Where the person's shoulders and torso are in the image (the scene knows its figure's joints): p_uc the
+// shoulder joints' midpoint, p_bc midway between it and the hip joints' midpoint.
+struct TorsoCentres {
+  cv::Point2f shoulder_centre, body_centre;
+};
+
 struct ExpectedCommand {
-  cv::Point2f shoulder_centre;  //!< p_uc: box centre x, kShoulderCentreRatio of the height below the top
-  cv::Point2f body_centre;      //!< p_bc: box centre x, kBodyCentreRatio of the height below the top
+  cv::Point2f shoulder_centre;  //!< p_uc: the given TorsoCentres', else box centre x, kShoulderCentreRatio of the height below the top
+  cv::Point2f body_centre;      //!< p_bc: the given TorsoCentres', else box centre x, kBodyCentreRatio of the height below the top
   int kind = 0;                 //!< hand_obs_t::KIND_*
   cv::Point2f vector;           //!< pixels, hand - p_uc (OUT) or hand - p_bc (FRONT), else 0
   int mode = 0;                 //!< gesture_cmd_t::MODE_*
@@ -53,8 +62,10 @@ struct ExpectedCommand {
 
 // user_box: the true body box (body_from_face of the true face with the preset head-body ratios, BodyProportions).
 // hands: the true centres of both hands, pixels; image: the frame size; hand_size: the side of a square about
-// each centre that holds the whole hand, pixels (0: a hand is its centre).
+// each centre that holds the whole hand, pixels (0: a hand is its centre); centres: p_uc and p_bc where the
+// person's joints put them (none: where the paper puts them on the box).
 ExpectedCommand expected_command(const cv::Rect2f& user_box, const std::array<cv::Point2f, 2>& hands,
-                                 const cv::Size& image, float hand_size = 0.0f);
+                                 const cv::Size& image, float hand_size = 0.0f,
+                                 const std::optional<TorsoCentres>& centres = std::nullopt);
 
 }  // namespace gpilot

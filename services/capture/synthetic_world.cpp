@@ -667,7 +667,12 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   t.right_elbow = pt(pose.right.elbow), t.left_elbow = pt(pose.left.elbow);
   t.right_wrist = pt(pose.right.wrist), t.left_wrist = pt(pose.left.wrist);
   t.hand_size = static_cast<float>(1.1 * std::max(v.px(dims_.hand_length, pose.right.hand), v.px(dims_.hand_length, pose.left.hand)));
-  const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), t.hand_size);
+  // p_uc and p_bc where the figure's shoulders and hips are: the arm points from the shoulders, whatever a
+  // stage estimates them from (the paper: the box; the pose method: landmarks).
+  const cv::Point3d shoulders = 0.5 * (pose.right.shoulder + pose.left.shoulder);
+  const cv::Point3d hips(pose.step_x, dims_.hip_y, 0.0);
+  const TorsoCentres centres{pt(shoulders), pt(0.5 * (shoulders + hips))};
+  const ExpectedCommand e = expected_command(t.user_box, {t.right_hand, t.left_hand}, out.bgr.size(), t.hand_size, centres);
   t.shoulder_centre = e.shoulder_centre;
   t.body_centre = e.body_centre;
   t.expected_kind = e.kind;

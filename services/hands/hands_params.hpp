@@ -99,7 +99,7 @@ struct SkinParams {
 struct HandsParams {
   //! the hands method (hands_core_factory.hpp): skin, the paper's Alg. 1/2 on a skin table; pose, the user's body
   //! landmarks (BlazePose) read by pose_gesture
-  std::string method = "skin";
+  std::string method = "pose";
   PoseParams pose;                  //!< the pose method's models, detector, tracking and smoothing
   PoseGestureParams pose_gesture;   //!< the pose method's rules: which arm commands, and how
   SkinParams skin;

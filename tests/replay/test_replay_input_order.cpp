@@ -102,7 +102,7 @@ std::string rewritten(const std::string& late, size_t by) {
 std::string replay_hands(const std::string& log) {
   const test::CommandOutput r = test::run_command(std::string(GPILOT_BIN_DIR) + "/gpilot-replay " + log +
                                                   " --stage hands --check --config " + GPILOT_SOURCE_DIR +
-                                                  "/deploy/config/synthetic.yaml 2>&1");
+                                                  "/deploy/config/synthetic-skin.yaml 2>&1");
   std::filesystem::remove(log);
   EXPECT_EQ(r.code, 0) << r.out;
   return r.out;
@@ -193,7 +193,7 @@ void copy_log(const std::string& from, const std::string& to, const tracker_init
 void replays_an_init_written_three_frames_late(const tracker_init_t& init,
                                                const std::function<bool(const user_track_t& before, const user_track_t&)>& acted) {
   const std::string tmp = std::filesystem::temp_directory_path() / ("gpilot-init-" + std::to_string(getpid()));
-  const std::string config = std::string(GPILOT_SOURCE_DIR) + "/deploy/config/synthetic.yaml";
+  const std::string config = std::string(GPILOT_SOURCE_DIR) + "/deploy/config/synthetic-skin.yaml";
   const std::string replay = std::string(GPILOT_BIN_DIR) + "/gpilot-replay ";
   copy_log(std::string(GPILOT_SOURCE_DIR) + "/tests/replay/logs/tracker.lcmlog", tmp + "-a.lcmlog", &init, 60, 0);
   const test::CommandOutput made = test::run_command(replay + tmp + "-a.lcmlog --stage tracker --config " + config +

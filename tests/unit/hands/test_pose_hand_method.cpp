@@ -40,9 +40,8 @@ TEST(PoseHandMethod, EachHeldGestureOfTheTourGivesTheScenesObservation) {
   if (!pose_test::models_present(params.pose)) return;
   const auto method = make_hand_method(params);
   using G = ground_truth_t;
-  // Not FURTHER: the scene's hand low in front is at the hip joint, where the wrist sits on the hip line and the
-  // rules (the real photos' truth) may call it resting (services/hands/README.md).
-  for (int gesture : {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER}) {
+  for (int gesture : {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER,
+                      G::GESTURE_FURTHER}) {
     SCOPED_TRACE(gesture);
     SyntheticFrame f;
     const HandsOutput r = held(*method, gesture, &f);
