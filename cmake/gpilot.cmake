@@ -2,7 +2,7 @@
 #   A GoogleTest executable registered with ctest. Unit tests are discovered case by case. NETNS tests
 #   (real LCM traffic) run whole inside a private network namespace via tests/netns-run, which exits 77
 #   (skipped, with a message) where no namespace can be made; with CASES, one ctest entry per gtest filter
-#   (name:last part of the filter), each in its own namespace.
+#   (name:last part of the filter), each in its own namespace; a filter that selects no test fails.
 #   Every test sees tests/support (helpers shared by tests, e.g. child_process.hpp).
 function(gpilot_add_test)
   cmake_parse_arguments(T "NETNS" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
@@ -20,7 +20,7 @@ function(gpilot_add_test)
       add_test(NAME ${T_NAME}:${_case}
         COMMAND ${CMAKE_SOURCE_DIR}/tests/netns-run $<TARGET_FILE:${T_NAME}> --gtest_filter=${_filter})
       set_tests_properties(${T_NAME}:${_case} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
-        SKIP_RETURN_CODE 77 SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")
+        SKIP_RETURN_CODE 77 SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]" FAIL_REGULAR_EXPRESSION "Running 0 tests")
     endforeach()
   elseif(T_NETNS)
     add_test(NAME ${T_NAME} COMMAND ${CMAKE_SOURCE_DIR}/tests/netns-run $<TARGET_FILE:${T_NAME}>)
