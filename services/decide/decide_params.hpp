@@ -16,13 +16,11 @@ struct DecideParams {
   double gap_timeout_s = 0.5;   //!< a gap between observations longer than this empties the buffers
   // rule evidence (frames of evidence; see evidence_rule.hpp)
   int evidence_enter = 3;       //!< a command is entered at this much evidence (a steady pose: this many frames)
-  int evidence_enter_front = 10;  //!< CLOSER / FURTHER are entered at this much evidence (a hand in front held still)
   int evidence_leave = 2;       //!< and left when its evidence falls to this
   int evidence_max = 10;        //!< evidence is capped here: letting go takes (max - leave) / decay frames
   double evidence_decay = 1.0;  //!< evidence lost per frame that does not support a command
   double moving_ratio = 0.07;   //!< a hand whose median position over the last moving_frames frames is this many
-  int moving_frames = 3;        //!< box widths from its median over the moving_frames before is moving: no evidence
-  double moving_min_px = 3.0;   //!< and at least this many pixels (a small, far user's landmarks jitter by a few)
+  int moving_frames = 2;        //!< box widths from its median over the moving_frames before is moving: no evidence
   int direction_frames = 8;     //!< FINE/UP/DOWN direction: mean of the last this many supporting vectors
 
   template <class V>
@@ -34,14 +32,11 @@ struct DecideParams {
     v("lambda4", lambda4, 0.0, 100.0, "vertical snap: x := 0 when |y| > |lambda4 x| (paper 0.5)");
     v("gap_timeout_s", gap_timeout_s, 0.01, 60.0, "observation gap that empties the buffers, s");
     v("evidence_enter", evidence_enter, 1, 1000, "evidence: a command is entered at this much evidence, frames");
-    v("evidence_enter_front", evidence_enter_front, 1, 1000,
-      "evidence: CLOSER / FURTHER are entered at this much evidence, frames (hands move in front while talking)");
     v("evidence_leave", evidence_leave, 0, 1000, "evidence: a held command is left when its evidence falls to this");
     v("evidence_max", evidence_max, 1, 1000, "evidence: cap; letting go takes (max - leave) / decay frames");
     v("evidence_decay", evidence_decay, 0.0, 1000.0, "evidence: lost per frame that does not support a command");
     v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: median hand position shift (box widths) that is moving: no evidence");
     v("moving_frames", moving_frames, 1, 1000, "evidence: frames in each of the two medians compared for moving_ratio");
-    v("moving_min_px", moving_min_px, 0.0, 1000.0, "evidence: a moving hand's median shift is also at least this many pixels");
     v("direction_frames", direction_frames, 1, 1000, "evidence: FINE/UP/DOWN direction is the mean of this many last vectors");
   }
   void check(const ParamCheck& c) const {
@@ -57,10 +52,6 @@ struct DecideParams {
               std::to_string(evidence_enter) + " must be at most evidence_max " + std::to_string(evidence_max));
     c.require(evidence_leave < evidence_enter, "evidence_leave",
               std::to_string(evidence_leave) + " must be below evidence_enter " + std::to_string(evidence_enter));
-    c.require(evidence_enter_front <= evidence_max, "evidence_enter_front",
-              std::to_string(evidence_enter_front) + " must be at most evidence_max " + std::to_string(evidence_max));
-    c.require(evidence_leave < evidence_enter_front, "evidence_leave",
-              std::to_string(evidence_leave) + " must be below evidence_enter_front " + std::to_string(evidence_enter_front));
   }
 };
 

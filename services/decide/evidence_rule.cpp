@@ -57,19 +57,14 @@ Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
     // Not yet 2 * moving_frames frames of this kind of hand: it just came into view, on its way.
     const size_t k = static_cast<size_t>(params_.moving_frames);
     moving = ax.size() < k || bx.size() < k ||
-             std::hypot(median(ax) - median(bx), median(ay) - median(by)) >
-                 std::max(params_.moving_ratio * box_width, params_.moving_min_px);
+             std::hypot(median(ax) - median(bx), median(ay) - median(by)) > params_.moving_ratio * box_width;
   }
   for (int k = 1; k < kClasses; ++k) {
-    // Motion matters for what is new: a frame of the held arm-out command's own class supports it even while the
-    // hand moves (a held arm that jitters, or sweeps within its command to steer, is still held). A hand in front
-    // has nothing to steer: moving, it is let go (hands move about in front of the body while people talk).
-    const bool front = k == kCloser || k == kFurther;
-    const bool support = k == c && (!moving || (k == current_ && !front));
+    // Motion matters for what is new: a frame of the held command's own class supports it even while the hand
+    // moves (a held arm that jitters, or sweeps within its command, is still held).
+    const bool support = k == c && (!moving || k == current_);
     evidence_[k] = std::clamp(evidence_[k] + (support ? 1.0 : -params_.evidence_decay), 0.0,
                               static_cast<double>(params_.evidence_max));
-    // A hand in front that moves is not held: its count starts again (and a held CLOSER or FURTHER is let go).
-    if (front && k == c && moving) evidence_[k] = 0.0;
     if (support) {
       recent_[k].push_back(vector);
       while (static_cast<int>(recent_[k].size()) > params_.direction_frames) recent_[k].pop_front();
@@ -79,10 +74,8 @@ Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
   // evidence_enter (the held one keeps priority while it holds).
   if (current_ != kNone && evidence_[current_] <= params_.evidence_leave) current_ = kNone;
   Class best = kNone;
-  for (int k = 1; k < kClasses; ++k) {
-    const int enter = k == kCloser || k == kFurther ? params_.evidence_enter_front : params_.evidence_enter;
-    if (evidence_[k] >= enter && (best == kNone || evidence_[k] > evidence_[best])) best = static_cast<Class>(k);
-  }
+  for (int k = 1; k < kClasses; ++k)
+    if (evidence_[k] >= params_.evidence_enter && (best == kNone || evidence_[k] > evidence_[best])) best = static_cast<Class>(k);
   if (best != kNone && (current_ == kNone || evidence_[best] > evidence_[current_])) current_ = best;
 
   Decision d;

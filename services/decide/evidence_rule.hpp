@@ -9,10 +9,7 @@
 // median over the moving_frames before is on its way somewhere: it is evidence for nothing (an arm going out or
 // coming down passes through the DOWN sector for ~0.3 s; lowered slowly, for over a second: only the drift over
 // several frames tells it from a held pose, and the medians ignore the jumps of a hand found on a noisy image).
-// A held FINE, UP or DOWN is supported by its own class while the hand moves (steering); a held CLOSER or
-// FURTHER is not (nothing to steer: a hand moving about in front of the body is talking), and CLOSER / FURTHER
-// are entered at evidence_enter_front. FINE's direction is the mean of the last direction_frames vectors of its
-// class, UP/DOWN's the mean y.
+// FINE's direction is the mean of the last direction_frames vectors of its class, UP/DOWN's the mean y.
 #pragma once
 
 #include <array>

@@ -19,7 +19,6 @@ DecideParams evidence_params() {
   DecideParams p;
   p.rule = "evidence";
   p.evidence_enter = 6;
-  p.evidence_enter_front = 6;
   p.evidence_leave = 2;
   p.evidence_max = 10;
   p.evidence_decay = 1.0;
@@ -155,43 +154,29 @@ TEST(EvidenceRule, UpAndDownSnapXAndFrontGivesZ) {
 TEST(EvidenceRule, ThresholdsComeFromParams) {
   DecideParams p = evidence_params();
   p.evidence_enter = 3;
-  p.evidence_enter_front = 5;
-  // (the first frame has no history: on its way)
-  EvidenceRule out(p);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(out.update(kOut, {-100, 10}, kBox).mode, GestureMode::Hover) << i;
-  EXPECT_EQ(out.update(kOut, {-100, 10}, kBox).mode, GestureMode::Fine);
-  // A hand in front needs evidence_enter_front: hands move in front of the body while people talk.
-  EvidenceRule front(p);
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(front.update(kFront, {0, -30}, kBox).mode, GestureMode::Hover) << i;
-  EXPECT_EQ(front.update(kFront, {0, -30}, kBox).mode, GestureMode::Closer);
-}
-
-// A steady pose from its first frame in view, 25 fps: the modes the default decider gives.
-std::vector<GestureMode> steady(HandObservation::Kind kind, Vec2 vector, int frames) {
-  GestureDecider d{DecideParams{}};
-  HandObservation o;
-  o.kind = kind;
-  o.vector = vector;
-  o.user_box_width = kBox;
-  o.track_id = 1;
-  std::vector<GestureMode> modes;
-  for (int i = 0; i < frames; ++i) {
-    o.utime = 1'000'000 + i * 40'000;
-    modes.push_back(d.update(o).mode);
-  }
-  return modes;
+  EvidenceRule r(p);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Hover) << i;
+  EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Closer);
 }
 
 TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
-  EXPECT_EQ(DecideParams{}.rule, "evidence");
-  // An arm out is commanded on its 8th frame (0.32 s: two 3-frame medians to tell it still, then 3 frames of
-  // evidence), a hand in front on its 15th (0.6 s: 10 frames of evidence), the paper's Alg. 3 on its 31st.
-  std::vector<GestureMode> want(8, GestureMode::Hover);
-  want.back() = GestureMode::Fine;
-  EXPECT_EQ(steady(HandObservation::Kind::Out, {-100, 0}, 8), want);
-  want.assign(15, GestureMode::Hover);
-  want.back() = GestureMode::Closer;
-  EXPECT_EQ(steady(HandObservation::Kind::Front, {0, -30}, 15), want);
+  const DecideParams p;
+  EXPECT_EQ(p.rule, "evidence");
+  // A steady pose is commanded on its 6th frame (0.2 s at 25 fps: two 2-frame medians to tell it still, then 3
+  // frames of evidence), the paper's Alg. 3 on its 31st.
+  GestureDecider d(p);
+  HandObservation o;
+  o.kind = HandObservation::Kind::Front;
+  o.vector = {0, -30};
+  o.user_box_width = kBox;
+  o.track_id = 1;
+  std::vector<GestureMode> modes;
+  for (int i = 0; i < 6; ++i) {
+    o.utime = 1'000'000 + i * 40'000;
+    modes.push_back(d.update(o).mode);
+  }
+  EXPECT_EQ(modes, (std::vector<GestureMode>{GestureMode::Hover, GestureMode::Hover, GestureMode::Hover, GestureMode::Hover,
+                                             GestureMode::Hover, GestureMode::Closer}));
 }
 
 TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {
