@@ -113,6 +113,12 @@ TEST(SyntheticWorld, DefaultCameraSeesThePersonFromThreeMetres) {
   // 0.17 m face at 3 m with f = 320 / tan(30 deg) = 554.3 px, and the cascade's box on it 1.1x that
   EXPECT_NEAR(f.truth.face_box.width, 554.256 * 0.17 * 1.1 / 3.0, 0.5);
   EXPECT_NEAR(f.truth.face_box.x + f.truth.face_box.width / 2, 320.0, 0.5);
+  // p_uc and p_bc are the figure's: its shoulder joints 1.44 m up, midway to its hips 1.16 m up, seen level from
+  // 1.5 m (the box's 0.2 and 0.5 of its height would give y 239.2 and 305.1)
+  EXPECT_NEAR(f.truth.shoulder_centre.x, 320.0, 0.5);
+  EXPECT_NEAR(f.truth.shoulder_centre.y, 240.0 + 554.256 * (1.5 - 1.44) / 3.0, 0.5);
+  EXPECT_NEAR(f.truth.body_centre.x, 320.0, 0.5);
+  EXPECT_NEAR(f.truth.body_centre.y, 240.0 + 554.256 * (1.5 - 1.16) / 3.0, 0.5);
   EXPECT_FLOAT_EQ(f.truth.person_position.x, 3.0f);
   EXPECT_FLOAT_EQ(f.truth.person_position.z, 0.0f);
   EXPECT_DOUBLE_EQ(f.truth.camera.down, -1.5);
