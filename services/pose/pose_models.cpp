@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "depthwise_conv.hpp"
 #include "paths.hpp"
 
 namespace gpilot {
@@ -60,18 +61,23 @@ std::string pose_landmark_path(const PoseParams& params) {
   return resolve_project_path(params.models_dir + "/pose_landmark_" + params.model + ".onnx");
 }
 
-PoseModels PoseModels::load(const PoseParams& params) { return load(pose_detector_path(params), pose_landmark_path(params)); }
+PoseModels PoseModels::load(const PoseParams& params) {
+  return load(pose_detector_path(params), pose_landmark_path(params), params.fast_depthwise);
+}
 
-PoseNet PoseModels::load_detector(const std::string& detector_path) {
+// cv::dnn makes a net's layers at its first forward, which find_outputs runs: in the DepthwiseConvScope.
+PoseNet PoseModels::load_detector(const std::string& detector_path, bool fast_depthwise) {
+  const DepthwiseConvScope depthwise(fast_depthwise);
   PoseNet n = read_net(detector_path, "person detector");
   find_outputs(n, "person detector", kDetectorInputSize,
                {{size_t{kDetectorAnchors} * kDetectorBoxValues, "box"}, {size_t{kDetectorAnchors}, "score"}});
   return n;
 }
 
-PoseModels PoseModels::load(const std::string& detector_path, const std::string& landmark_path) {
+PoseModels PoseModels::load(const std::string& detector_path, const std::string& landmark_path, bool fast_depthwise) {
   PoseModels m;
-  m.detector = load_detector(detector_path);
+  m.detector = load_detector(detector_path, fast_depthwise);
+  const DepthwiseConvScope depthwise(fast_depthwise);
   m.landmark = read_net(landmark_path, "pose landmark");
   find_outputs(m.landmark, "pose landmark", kLandmarkInputSize,
                {{size_t{kLandmarkPoints} * kLandmarkValues, "landmark"}, {size_t{1}, "pose flag"}});

@@ -40,10 +40,10 @@ struct PoseModels {
   // models_dir/pose_detection.onnx and models_dir/pose_landmark_<model>.onnx, models_dir through
   // resolve_project_path.
   static PoseModels load(const PoseParams& params);
-  // Explicit files.
-  static PoseModels load(const std::string& detector_path, const std::string& landmark_path);
+  // Explicit files; fast_depthwise as PoseParams::fast_depthwise.
+  static PoseModels load(const std::string& detector_path, const std::string& landmark_path, bool fast_depthwise = true);
   // The person detector alone (the tracker's person search), checked as load() checks it.
-  static PoseNet load_detector(const std::string& detector_path);
+  static PoseNet load_detector(const std::string& detector_path, bool fast_depthwise = true);
 };
 
 // The files load(params) reads.

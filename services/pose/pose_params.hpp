@@ -45,9 +45,10 @@ struct PoseSmoothingParams {
 };
 
 struct PoseParams {
-  std::string model = "lite";             //!< landmark model: lite (17 ms) or full (30 ms)
+  std::string model = "lite";             //!< landmark model: lite or full (README: speed)
   std::string models_dir = "models/pose";  //!< folder of the .onnx files, relative to the project root
   int threads = 1;                        //!< cv::dnn threads (process-wide: cv::setNumThreads)
+  bool fast_depthwise = true;             //!< depthwise convs other than 3x3 on ours (depthwise_conv.hpp), not OpenCV's
   // Person detector (pose_detection_cpu.pbtxt and its calculators).
   double detector_score_threshold = 0.5;  //!< sigmoid score a detection needs (MediaPipe pose 0.5)
   double score_clipping = 100.0;          //!< raw score logits clipped to +-this before the sigmoid (MediaPipe 100)
@@ -76,6 +77,7 @@ struct PoseParams {
     v("model", model, "landmark model: lite or full");
     v("models_dir", models_dir, "folder of pose_detection.onnx and pose_landmark_<model>.onnx (relative: project root)");
     v("threads", threads, 1, 64, "cv::dnn threads (process-wide)");
+    v("fast_depthwise", fast_depthwise, "depthwise convolutions other than 3x3 on gpilot's vectorised kernel (false: OpenCV 4.6's, unvectorised)");
     v("detector_score_threshold", detector_score_threshold, 0.0, 1.0, "person detector: score a detection needs (MediaPipe 0.5)");
     v("score_clipping", score_clipping, 1.0, 1000.0, "person detector: score logits clipped to +-this (MediaPipe 100)");
     v("nms_iou_threshold", nms_iou_threshold, 0.0, 1.0, "weighted NMS: detections overlapping more (IoU) are merged (MediaPipe 0.3)");

@@ -1,6 +1,7 @@
 // Benchmarks of the pose core on one thread: the person detector over a 640x480 frame, each landmark model on
 // one ROI, and the estimator's tracked frame (crop, lite, decoding, smoothing, next ROI). The frame is the
-// synthetic tour's OUT pose, rendered before timing; models from models/pose (deploy/setup).
+// synthetic tour's OUT pose, rendered before timing; models from models/pose (deploy/setup). The argument is
+// PoseParams::fast_depthwise: 1, the depthwise convolutions on ours; 0, on OpenCV's own.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core/utility.hpp>
@@ -20,7 +21,8 @@ SyntheticFrame out_pose_frame() {
 
 void BM_PoseDetector(benchmark::State& state) {
   const SyntheticFrame f = out_pose_frame();
-  const PoseParams p;
+  PoseParams p;
+  p.fast_depthwise = state.range(0) != 0;
   cv::setNumThreads(p.threads);  // as gpilot-hands sets it (opencv_threads_of)
   PersonDetector detector(p, PoseModels::load(p).detector);
   size_t found = 0;
@@ -32,6 +34,7 @@ void run_landmarks(benchmark::State& state, const char* model) {
   const SyntheticFrame f = out_pose_frame();
   PoseParams p;
   p.model = model;
+  p.fast_depthwise = state.range(0) != 0;
   cv::setNumThreads(p.threads);  // as gpilot-hands sets it (opencv_threads_of)
   PoseModels models = PoseModels::load(p);
   PersonDetector detector(p, models.detector);
@@ -54,7 +57,8 @@ void BM_PoseLandmarkFull(benchmark::State& state) { run_landmarks(state, "full")
 // advancing times (the ROI from the previous frame's auxiliary points; no detector).
 void BM_PoseEstimatorTracking(benchmark::State& state) {
   const SyntheticFrame f = out_pose_frame();
-  const PoseParams p;
+  PoseParams p;
+  p.fast_depthwise = state.range(0) != 0;
   PoseEstimator pose(p, PoseModels::load(p));
   int64_t utime = 0;
   pose.estimate(f.bgr, f.truth.user_box, utime);
@@ -69,7 +73,7 @@ void BM_PoseEstimatorTracking(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_PoseDetector)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PoseLandmarkLite)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PoseLandmarkFull)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PoseEstimatorTracking)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseDetector)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseLandmarkLite)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseLandmarkFull)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseEstimatorTracking)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
