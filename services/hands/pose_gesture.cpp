@@ -146,9 +146,15 @@ PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& 
   g.left = read_arm(lm, t, p, user_box, L::kLeftShoulder, L::kLeftElbow, L::kLeftWrist, L::kLeftPinky, L::kLeftIndex);
   g.right = read_arm(lm, t, p, user_box, L::kRightShoulder, L::kRightElbow, L::kRightWrist, L::kRightPinky, L::kRightIndex);
   // The paper's gestures are made with one arm while the other does not command: two arms that both command (a
-  // T-pose, arms crossed on the chest, one out and one in front) are no command. A hand at the face or on the head
+  // T-pose, arms crossed on the chest, one out and one in front) are no command, unless both are out and one
+  // reaches out_dominant_reach times further than the other. A hand at the face or on the head
   // or a bent arm raised (OTHER) commands nothing itself and does not stop the other arm's gesture.
-  const bool left_commands = commands(g.left.pose), right_commands = commands(g.right.pose);
+  bool left_commands = commands(g.left.pose), right_commands = commands(g.right.pose);
+  if (left_commands && right_commands && g.left.pose == ArmPose::Out && g.right.pose == ArmPose::Out && p.out_dominant_reach > 0) {
+    const double left = length(at(lm, L::kLeftWrist) - t.left_shoulder), right = length(at(lm, L::kRightWrist) - t.right_shoulder);
+    if (left >= p.out_dominant_reach * right) right_commands = false;
+    if (right >= p.out_dominant_reach * left) left_commands = false;
+  }
   if (left_commands && right_commands) {
     g.rule = "both arms command";
     return g;
@@ -162,7 +168,7 @@ PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& 
   if (arm.pose == ArmPose::Out) {
     g.kind = HandKind::Out;
     g.vector = arm.hand - g.shoulder_centre;
-    g.rule = "one arm out";
+    g.rule = g.left.pose == g.right.pose ? "one arm out, reaching further than the other" : "one arm out";
   } else {
     g.kind = HandKind::Front;
     g.vector = arm.hand - g.body_centre;

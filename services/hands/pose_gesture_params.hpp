@@ -21,6 +21,10 @@ struct PoseGestureParams {
   double out_beside_box_min_from_down_deg = 25; //!< OUT: a straight arm at least this far from down whose hand is
                                                 //!< outside the user box (the paper's Alg. 1: a hand beside the body
                                                 //!< box is out); 180: the box is not used
+  double out_dominant_reach = 1.5;    //!< both arms OUT: the one whose wrist reaches this many times further from its
+                                      //!< shoulder commands alone (BlazePose may place an arm hanging unseen, dark on
+                                      //!< a dark wall, out and bent beside the body); reaches nearer alike (a T-pose)
+                                      //!< are no command. 0: both OUT are always no command
   double rest_max_from_down_deg = 45; //!< REST: a bent arm whose hand is below the body centre, at most this far from
                                       //!< straight down, rests (a hand on the hip)
   bool front_wrist_between_hips = true; //!< FRONT: a straight arm whose wrist lies between the hips in x is held in
@@ -43,6 +47,7 @@ struct PoseGestureParams {
     v("out_raised_min_straightness", out_raised_min_straightness, 0.0, 1.0, "OUT with the wrist above the shoulders: straightness at least this");
     v("out_min_from_down_deg", out_min_from_down_deg, 0.0, 180.0, "OUT below the shoulders: a straight arm at least this far from straight down");
     v("out_beside_box_min_from_down_deg", out_beside_box_min_from_down_deg, 0.0, 180.0, "OUT: a straight arm this far from down with the hand outside the user box (180: box not used)");
+    v("out_dominant_reach", out_dominant_reach, 0.0, 10.0, "both arms OUT: the one reaching this many times further from its shoulder commands alone (0: off)");
     v("rest_max_from_down_deg", rest_max_from_down_deg, 0.0, 180.0, "REST: a bent arm with the hand below the body centre, at most this far from down");
     v("front_wrist_between_hips", front_wrist_between_hips, "FRONT: a straight arm with the wrist between the hips in x is in front of the body, not hanging");
     v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");

@@ -110,6 +110,25 @@ TEST(PoseGesture, TwoArmsThatDisagreeAreNoCommand) {
   }
 }
 
+// Both arms read OUT, the right one short and bent beside the body: as BlazePose placed a dark arm hanging
+// against a dark wall (dark-skin e2e, the drone 2.3 m up; the wrist 50 px from the shoulder, the pointing arm's
+// 89 px). The arm reaching out_dominant_reach (1.5) times further commands; nearer alike, no command.
+TEST(PoseGesture, OfTwoArmsOutTheOneReachingFarFurtherCommands) {
+  const Arm short_bent_right{{258, 114}, {232, 108}};  // reach 48.7 px, straightness 0.94, 82 deg from down
+  const PoseGesture g = read_pose_gesture(standing(kLeftOutToImageRight, short_bent_right), PoseGestureParams{});
+  ASSERT_EQ(g.right.pose, ArmPose::Out);
+  ASSERT_EQ(g.left.pose, ArmPose::Out);
+  EXPECT_EQ(g.kind, HandKind::Out) << g.rule;
+  EXPECT_STREQ(g.rule, "one arm out, reaching further than the other");
+  EXPECT_GT(g.vector.x, 100);  // the left arm's hand, to the image's right
+  PoseGestureParams off;
+  off.out_dominant_reach = 0;
+  EXPECT_EQ(read_pose_gesture(standing(kLeftOutToImageRight, short_bent_right), off).kind, HandKind::None);
+  // 100 px against 70 px (1.43 times): alike, no command
+  const Arm right_70{{245, 100}, {210, 100}};
+  EXPECT_EQ(read_pose_gesture(standing(kLeftOutToImageRight, right_70), PoseGestureParams{}).kind, HandKind::None);
+}
+
 TEST(PoseGesture, AHandAtTheFaceIsNotTheFrontGestureAndDoesNotStopTheOtherArm) {
   const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, kRightAtFace), PoseGestureParams{});
   EXPECT_EQ(g.right.pose, ArmPose::Other);
