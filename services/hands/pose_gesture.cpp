@@ -33,7 +33,7 @@ struct Torso {
   bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
 };
 
-Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
+Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Size>& frame) {
   Torso t;
   t.left_shoulder = at(lm, L::kLeftShoulder);
   t.right_shoulder = at(lm, L::kRightShoulder);
@@ -54,6 +54,10 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p) {
   t.shoulder_width = length(t.left_shoulder - t.right_shoulder);
   t.face_radius = p.face_radius * t.shoulder_width;
   t.hips_seen = seen(lm, L::kLeftHip, p.hips_min_visibility) && seen(lm, L::kRightHip, p.hips_min_visibility);
+  // Hips on the frame's bottom edge (the drone high and close) are the model's guess of a body cut off there, and
+  // a hanging arm seen from above ends between them.
+  if (frame && std::max(t.left_hip.y, t.right_hip.y) > frame->height - p.hips_min_frame_margin * torso_height)
+    t.hips_seen = false;
   return t;
 }
 
@@ -125,14 +129,15 @@ std::string describe_pose_gesture(const PoseGesture& g) {
   return std::string(g.rule) + "; " + arm("left", g.left) + ", " + arm("right", g.right);
 }
 
-PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Rect2f>& user_box) {
+PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Rect2f>& user_box,
+                              const std::optional<cv::Size>& frame) {
   PoseGesture g;
   for (const PoseLandmark& l : lm)
     if (!(std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z) && std::isfinite(l.visibility))) {
       g.rule = "a landmark is not finite";
       return g;
     }
-  const Torso t = torso_of(lm, p);
+  const Torso t = torso_of(lm, p, frame);
   g.shoulder_centre = t.shoulder_mid;
   g.body_centre = t.body_centre;
   // The shoulders are what every arm is read from. The hips may be below the frame (the drone high and close):

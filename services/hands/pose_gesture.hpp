@@ -40,8 +40,10 @@ struct PoseGesture {
 };
 
 // user_box: the tracker's box of the user (the paper's Alg. 1 calls a hand beside it out), pixels; none: not used.
+// frame: the image's size (hips on its bottom edge are not seen); none: not used.
 PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p,
-                              const std::optional<cv::Rect2f>& user_box = std::nullopt);
+                              const std::optional<cv::Rect2f>& user_box = std::nullopt,
+                              const std::optional<cv::Size>& frame = std::nullopt);
 
 // "rule; left POSE (s straightness, angle from down[, between the hips]), right ...": what decided, for CSVs and logs.
 std::string describe_pose_gesture(const PoseGesture& g);

@@ -33,6 +33,8 @@ struct PoseGestureParams {
                                       //!< p_bc measured); lower than min_visibility: hips in the frame's bottom 40 px
                                       //!< (the drone above the user) reach it on 79 % of e2e frames (0.5: 66 %),
                                       //!< hips below the frame on 6.8 % (0.5: 1.6 %)
+  double hips_min_frame_margin = 0.1; //!< ... and both hips at least this many torso heights above the frame's bottom
+                                      //!< edge (0: on it is enough)
   double span_margin = 0.1;           //!< the torso's span in x is its shoulders' and hips' extent grown by this many
                                       //!< torso heights each side
   double face_radius = 0.4;           //!< a wrist within this many shoulder widths of the face's centre (nose, eyes,
@@ -51,6 +53,7 @@ struct PoseGestureParams {
     v("rest_max_from_down_deg", rest_max_from_down_deg, 0.0, 180.0, "REST: a bent arm with the hand below the body centre, at most this far from down");
     v("front_wrist_between_hips", front_wrist_between_hips, "FRONT: a straight arm with the wrist between the hips in x is in front of the body, not hanging");
     v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");
+    v("hips_min_frame_margin", hips_min_frame_margin, 0.0, 2.0, "FRONT is judged only with both hips at least this many torso heights above the frame's bottom edge");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");
     v("face_radius", face_radius, 0.0, 2.0, "a wrist within this many shoulder widths of the face centre is at the face (no command)");
     v("hand_beyond_wrist", hand_beyond_wrist, 0.0, 1.5, "hand point: this share of the way from the wrist to the knuckles");

@@ -49,7 +49,7 @@ HandsOutput PoseHandMethod::observe(const cv::Mat& bgr, const UserView& user, in
   }
   diagnostics.landmarks = r.landmarks;
   out.pose = diagnostics;
-  const PoseGesture g = read_pose_gesture(r.landmarks, params_.pose_gesture, user.box);
+  const PoseGesture g = read_pose_gesture(r.landmarks, params_.pose_gesture, user.box, bgr.size());
   out.pose->reading = describe_pose_gesture(g);
   if (!g.torso_seen) return out;
   out.shoulder_centre = g.shoulder_centre;

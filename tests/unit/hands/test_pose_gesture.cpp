@@ -167,6 +167,12 @@ TEST(PoseGesture, HipsBelowTheFrameLeaveAnArmOutButNoHandInFront) {
   // Hips at the frame's bottom edge: the model scores them 0.42-0.49 where they are right; a hand in front is read.
   for (const int hip : {L::kLeftHip, L::kRightHip}) front[hip].visibility = 0.45f;
   EXPECT_EQ(read_pose_gesture(front, PoseGestureParams{}).right.pose, ArmPose::FrontLow);
+  // With the frame known: hips (y 200, torso 100 px high) more than 0.1 torso heights above its bottom edge are
+  // seen, nearer it not (a dark-skin e2e run, the drone 2.3 m up: hips at y 477 of 480 scored 0.42-0.58, and a
+  // hanging arm seen from above ended between them: FRONT_LOW, and DOWN no command, on 56 frames).
+  EXPECT_EQ(read_pose_gesture(front, PoseGestureParams{}, std::nullopt, cv::Size(640, 211)).right.pose, ArmPose::FrontLow);
+  EXPECT_EQ(read_pose_gesture(front, PoseGestureParams{}, std::nullopt, cv::Size(640, 209)).kind, HandKind::None);
+  EXPECT_EQ(read_pose_gesture(out, PoseGestureParams{}, std::nullopt, cv::Size(640, 209)).kind, HandKind::Out);
 }
 
 TEST(PoseGesture, ABentArmIsNotOutAndTheStraightnessLimitDecides) {
