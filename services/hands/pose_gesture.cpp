@@ -70,7 +70,8 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   if (!(seen(lm, shoulder, p.min_visibility) && seen(lm, elbow, p.min_visibility) && seen(lm, wrist, p.min_visibility)))
     return a;  // Unseen
   const double path = length(E - S) + length(W - E);
-  a.straightness = path > 0 ? length(W - S) / path : 0.0;
+  a.reach = length(W - S);
+  a.straightness = path > 0 ? a.reach / path : 0.0;
   const cv::Point2f d = W - S;
   a.from_down_deg = (d.x == 0 && d.y == 0) ? 0.0 : std::abs(std::atan2(static_cast<double>(d.x), static_cast<double>(d.y))) * 180.0 / M_PI;
   const double shoulder_y = line_y_at(t.left_shoulder, t.right_shoulder, W.x);
@@ -156,9 +157,8 @@ PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& 
   // or a bent arm raised (OTHER) commands nothing itself and does not stop the other arm's gesture.
   bool left_commands = commands(g.left.pose), right_commands = commands(g.right.pose);
   if (left_commands && right_commands && g.left.pose == ArmPose::Out && g.right.pose == ArmPose::Out && p.out_dominant_reach > 0) {
-    const double left = length(at(lm, L::kLeftWrist) - t.left_shoulder), right = length(at(lm, L::kRightWrist) - t.right_shoulder);
-    if (left >= p.out_dominant_reach * right) right_commands = false;
-    if (right >= p.out_dominant_reach * left) left_commands = false;
+    if (g.left.reach >= p.out_dominant_reach * g.right.reach) right_commands = false;
+    if (g.right.reach >= p.out_dominant_reach * g.left.reach) left_commands = false;
   }
   if (left_commands && right_commands) {
     g.rule = "both arms command";

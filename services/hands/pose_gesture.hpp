@@ -21,6 +21,7 @@ const char* arm_pose_name(ArmPose a);
 struct ArmReading {
   ArmPose pose = ArmPose::Unseen;
   cv::Point2f hand;               //!< the hand's point (wrist towards the knuckles), pixels
+  double reach = 0;               //!< |W-S|, pixels
   double straightness = 0;        //!< |W-S| / (|S-E| + |E-W|)
   double from_down_deg = 0;       //!< angle between shoulder->wrist and image-down, 0..180
   bool wrist_between_hips = false;        //!< the wrist between the hips in x

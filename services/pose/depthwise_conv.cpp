@@ -46,6 +46,7 @@ inline __attribute__((always_inline)) void row_taps(float* o, const float* const
 
 inline __attribute__((always_inline)) void convolve(const DepthwiseConvShape& s, const float* in, const float* weights,
                                                     const float* bias, float* out, int channel_begin, int channel_end) {
+  if (s.out_h <= 0 || s.out_w <= 0 || s.stride_h <= 0 || s.stride_w <= 0) return;  // no output
   const int sh = s.stride_h, sw = s.stride_w;
   // The bordered plane: tall and wide enough for every tap of every output; its phases, each phase_h x phase_w.
   const int bordered_h = std::max(s.in_h + s.pad_top, (s.out_h - 1) * sh + s.k_h);
@@ -142,8 +143,10 @@ class DepthwiseConvLayer : public cv::dnn::Layer {
                        std::vector<cv::dnn::MatShape>&) const override {
     CV_Assert(inputs.size() == 1 && inputs[0].size() == 4 && inputs[0][1] == weights_.size[0]);
     const cv::dnn::MatShape& in = inputs[0];
-    outputs.assign(1, cv::dnn::MatShape{in[0], in[1], (in[2] + pad_top_ + pad_bottom_ - k_h_) / stride_h_ + 1,
-                                        (in[3] + pad_left_ + pad_right_ - k_w_) / stride_w_ + 1});
+    const int out_h = (in[2] + pad_top_ + pad_bottom_ - k_h_) / stride_h_ + 1;
+    const int out_w = (in[3] + pad_left_ + pad_right_ - k_w_) / stride_w_ + 1;
+    CV_Assert(in[2] + pad_top_ + pad_bottom_ >= k_h_ && in[3] + pad_left_ + pad_right_ >= k_w_ && out_h > 0 && out_w > 0);
+    outputs.assign(1, cv::dnn::MatShape{in[0], in[1], out_h, out_w});
     return false;
   }
 

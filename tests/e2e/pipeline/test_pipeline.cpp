@@ -270,11 +270,15 @@ Judged judge_gestures(const Recorded& r, double rest_drift_m, const std::vector<
     std::fprintf(stderr, "judged %s\n", line);
     SCOPED_TRACE(line);
     if (std::find(open_findings.begin(), open_findings.end(), gesture) != open_findings.end()) {
-      // How far it flew the way asked: up, down, in, out.
-      const double asked = gesture == ground_truth_t::GESTURE_UP       ? -dd
-                           : gesture == ground_truth_t::GESTURE_DOWN   ? dd
-                           : gesture == ground_truth_t::GESTURE_CLOSER ? range_a - range_b
-                                                                       : range_b - range_a;
+      // How far it flew the way asked: up, down, in, out (OUT and REST have no one way: never open findings).
+      double asked = 0;
+      switch (gesture) {
+        case ground_truth_t::GESTURE_UP: asked = -dd; break;
+        case ground_truth_t::GESTURE_DOWN: asked = dd; break;
+        case ground_truth_t::GESTURE_CLOSER: asked = range_a - range_b; break;
+        case ground_truth_t::GESTURE_FURTHER: asked = range_b - range_a; break;
+        default: ADD_FAILURE() << kGestureNames[gesture] << " cannot be an open finding: it has no one way to fly"; break;
+      }
       EXPECT_GT(asked, -0.10) << "an open finding, but it flew the other way";
       std::fprintf(stderr, "  an open finding: %s; judged only for not flying the other way\n", asked > 0.10 ? "flown" : "not flown");
       ++j.checked;

@@ -133,5 +133,22 @@ TEST(DepthwiseConv, KernelAloneGivesTheSumOfTheTapsInsideTheImage) {
   EXPECT_FLOAT_EQ(out[0], 0.5f + 1 + 2 + 3 + 5 + 6 + 7 + 9 + 10 + 11);
 }
 
+// An image smaller than the kernel, without pads, has no output: a cv::Exception when the net is set up, as
+// OpenCV's own layers refuse a shape (PoseModels turns it into a PoseModelError naming the file); the kernel
+// alone writes nothing.
+TEST(DepthwiseConv, AnImageSmallerThanTheKernelIsAnErrorNotACrash) {
+  const ConvCase c{4, 3, 3, 5, 5, 1, 1, 0, 0, 0, 0};
+  cv::Mat image(std::vector<int>{1, c.channels, c.h, c.w}, CV_32F, cv::Scalar(1));
+  cv::Mat weights(std::vector<int>{c.channels, 1, c.k_h, c.k_w}, CV_32F, cv::Scalar(1));
+  cv::Mat bias(std::vector<int>{c.channels}, CV_32F, cv::Scalar(0));
+  std::string type;
+  EXPECT_THROW(run(c, image, weights, bias, true, type), cv::Exception);
+  DepthwiseConvShape s;
+  s.channels = 1, s.in_h = 3, s.in_w = 3, s.out_h = -1, s.out_w = -1, s.k_h = 5, s.k_w = 5;
+  float out = 7.0f;
+  depthwise_conv2d(s, image.ptr<float>(), weights.ptr<float>(), nullptr, &out, 0, 1);
+  EXPECT_EQ(out, 7.0f);
+}
+
 }  // namespace
 }  // namespace gpilot
