@@ -1,6 +1,6 @@
-// The user's body box from their face box: the paper's "preset head-body ratio". One definition for the
-// tracker (which starts and re-anchors tracks on faces) and the hands stage (which works on the box the face
-// implies when it is given one).
+// The user's body box from their face box: the paper's "preset head-body ratio". The tracker makes the box
+// with it (it starts and re-anchors tracks on faces); the hands stage uses the tracker's USER_TRACK box as
+// given, and gpilot-eval-hands makes the box the tracker would make from a face.
 #pragma once
 
 #include <opencv2/core/types.hpp>
