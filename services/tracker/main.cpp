@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<gpilot::UserTracker> tracker;
   cli.before_bus([&](const gpilot::Config& config) {
     const auto params = config.section<gpilot::TrackerParams>("tracker");
-    tracker = std::make_unique<gpilot::UserTracker>(params, gpilot::load_face_cascade(params));
+    tracker = std::make_unique<gpilot::UserTracker>(params, gpilot::load_tracker_models(params));
   });
   return cli.run_node(argc, argv, [&](const gpilot::Config& config, gpilot::BusNode& node) {
     gpilot::set_opencv_threads(gpilot::opencv_threads_of(config, "tracker"));

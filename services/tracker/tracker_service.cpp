@@ -79,7 +79,7 @@ struct SearchCost {
 
 std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node) {
   const auto params = config.section<TrackerParams>("tracker");
-  return start_tracker_service(config, node, std::make_unique<UserTracker>(params, load_face_cascade(params)));
+  return start_tracker_service(config, node, std::make_unique<UserTracker>(params, load_tracker_models(params)));
 }
 
 std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot::BusNode& node,

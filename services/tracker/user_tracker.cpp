@@ -11,20 +11,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "box_iou.hpp"
-#include "pose/pose_models.hpp"
 
 namespace gpilot {
 namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / CV_PI;
-
-std::shared_ptr<PersonDetector> make_person_detector(const PersonSearchParams& p) {
-  if (!p.enabled) return nullptr;
-  PoseParams pose;
-  pose.models_dir = p.models_dir;
-  pose.detector_score_threshold = p.score_threshold;
-  return std::make_shared<PersonDetector>(pose, PoseModels::load_detector(pose_detector_path(pose)));
-}
 
 // The face as the cascade would box it, from the detection's keypoints (person.face_in_body, face_above_shoulders).
 cv::Rect2d implied_face(const PersonDetection& d, const PersonSearchParams& p) {
@@ -68,12 +59,15 @@ namespace {
 constexpr double kMaxRecheckFaceScale = 2.0;
 }  // namespace
 
-UserTracker::UserTracker(const TrackerParams& params, cv::CascadeClassifier face_cascade)
+UserTracker::UserTracker(const TrackerParams& params, TrackerModels models)
     : p_(params),
-      faces_(params, std::move(face_cascade)),
+      faces_(params, std::move(models.face_cascade)),
       dsst_(params.dsst),
       track_body_(params.body()),
-      persons_(make_person_detector(params.person)) {}
+      persons_(params.person.enabled ? std::move(models.persons) : nullptr) {
+  if (params.person.enabled && !persons_)
+    throw std::invalid_argument("UserTracker: tracker.person.enabled without its detector (load_tracker_models)");
+}
 
 std::string UserTracker::set_box(const cv::Rect2d& box) {
   if (!std::isfinite(box.x) || !std::isfinite(box.y) || !std::isfinite(box.width) || !std::isfinite(box.height))

@@ -20,6 +20,7 @@
 #include "dsst.hpp"
 #include "face_detector.hpp"
 #include "pose/person_detector.hpp"
+#include "tracker_models.hpp"
 #include "tracker_params.hpp"
 
 namespace gpilot {
@@ -55,10 +56,9 @@ struct TrackOutput {
 
 class UserTracker {
  public:
-  // face_cascade: tracker.face.cascade, read by load_face_cascade (face_cascade.hpp) where the tracker is built.
-  // With tracker.person.enabled the person detector's model is loaded too (person.models_dir/pose_detection.onnx):
-  // PoseModelError naming the file if it cannot.
-  UserTracker(const TrackerParams& params, cv::CascadeClassifier face_cascade);
+  // models: read by load_tracker_models (tracker_models.hpp) where the tracker is built; with
+  // tracker.person.enabled its person detector is required (std::invalid_argument without it).
+  UserTracker(const TrackerParams& params, TrackerModels models);
 
   // Asks for a track on box from the next frame on. "" if accepted, else why not (non-finite, < 2 px).
   std::string set_box(const cv::Rect2d& box);

@@ -38,7 +38,7 @@ gpilot::TrackerParams params() {
 
 const gpilot::UserTracker& prototype() {
   // The Haar cascade loads once; each sequence runs on a copy of the untouched tracker.
-  static const gpilot::UserTracker t{params(), gpilot::load_face_cascade(params())};
+  static const gpilot::UserTracker t{params(), gpilot::load_tracker_models(params())};
   return t;
 }
 

@@ -66,7 +66,7 @@ void BM_UserTrackerSearching(benchmark::State& state) {
   cv::setNumThreads(1);
   gpilot::TrackerParams p;
   p.person.enabled = state.range(2) != 0;
-  gpilot::UserTracker tracker(p, gpilot::load_face_cascade(p));
+  gpilot::UserTracker tracker(p, gpilot::load_tracker_models(p));
   const cv::Mat frame = gpilot::test::texture(cv::Size(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), 11);
   for (auto _ : state) benchmark::DoNotOptimize(tracker.process(frame));
 }

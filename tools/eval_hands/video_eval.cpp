@@ -128,7 +128,7 @@ int run_video_eval(const VideoEvalOptions& o, const Config& config) {
   auto source = open_source(o);
   const double fps = source->fps() > 0 ? source->fps() : o.fps;
   const auto tracker_params = config.section<TrackerParams>("tracker");
-  UserTracker tracker(tracker_params, load_face_cascade(tracker_params));
+  UserTracker tracker(tracker_params, load_tracker_models(tracker_params));
   if (!o.init_box.empty()) {
     const std::string why = tracker.set_box(parse_init_box(o.init_box));
     if (!why.empty()) throw std::runtime_error("--init-box: " + why);

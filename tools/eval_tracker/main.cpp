@@ -77,7 +77,7 @@ class Runner {
 // by them, and a look-alike's face re-anchored it).
 class UserTrackerRunner : public Runner {
  public:
-  explicit UserTrackerRunner(const TrackerParams& p) : Runner("gpilot UserTracker"), t_(p, load_face_cascade(p)) {}
+  explicit UserTrackerRunner(const TrackerParams& p) : Runner("gpilot UserTracker"), t_(p, load_tracker_models(p)) {}
   void init(const cv::Mat& frame, const cv::Rect2d& box) override {
     t_.set_box(box);
     t_.process(frame);

@@ -125,7 +125,7 @@ TEST(TrackerService, TracksRealFramesBySeqAndRejectsMalformedOnes) {
   EXPECT_EQ(tracks.size(), 16u);
   EXPECT_EQ(tracks.count(100), 0u);
   // and the boxes are the core's over the good frames only (the bad ones did not advance the track).
-  UserTracker core{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker core{TrackerParams{}, load_tracker_models(TrackerParams{})};
   core.set_box(init);
   for (int64_t s = 0; s < 16; ++s) {
     const TrackOutput want = core.process(frames[static_cast<size_t>(s)]);
@@ -201,7 +201,7 @@ TEST(TrackerService, RefusedFacesAreCountedInHealth) {
   stage.bus.subscribe<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { tracks[m.seq] = m; });
   ASSERT_TRUE(stage.wait_for_health()) << "no HEALTH from gpilot-tracker";
   // WHEN two whole scans' worth of frames come, one at a time (raw BGR: the core below sees the same pixels)
-  UserTracker core{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker core{TrackerParams{}, load_tracker_models(TrackerParams{})};
   const int frames = 2 * FaceDetector(TrackerParams{}, load_face_cascade(TrackerParams{})).scan_tiles(frame.size());
   for (int64_t seq = 0; seq < frames; ++seq) {
     stage.bus.publish("CAMERA", mat_to_image(frame, wall_utime(), seq));
@@ -352,7 +352,7 @@ TEST(TrackerService, LiveAndReplayAgreeUnderLoadWithSkippedFrames) {
     EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 1) << "--all-frames found no difference with frames skipped";
   }
   // The core in-process over the same frames says the same.
-  UserTracker core{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker core{TrackerParams{}, load_tracker_models(TrackerParams{})};
   core.set_box(cv::Rect2d(261, 48, 39, 65));
   for (const auto& [seq, got] : tracks) {
     // The frame as the stage saw it: through the JPEG codec.

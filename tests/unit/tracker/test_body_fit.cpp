@@ -253,7 +253,7 @@ TEST(UserTrackerBodyCheck, FaceAtTheBottomEdgeStartsNoTrack) {
   const TrackerParams p;
   const int scan = FaceDetector(p, load_face_cascade(p)).scan_tiles(frame.size());
   // WHEN the tracker searches for two whole scans of the frame
-  UserTracker t(p, load_face_cascade(p));
+  UserTracker t(p, load_tracker_models(p));
   const Searched s = search(t, frame, 2 * scan);
   // THEN no track: her face is found and refused (counted) on each scan, and the search goes on
   EXPECT_EQ(s.out.status, TrackStatus::kSearching);
@@ -265,7 +265,7 @@ TEST(UserTrackerBodyCheck, FaceAtTheBottomEdgeStartsNoTrack) {
   TrackerParams off = p;
   off.body_fit.min_in_frame = 0;
   off.body_fit.min_torso_in_frame = 0;
-  UserTracker u(off, load_face_cascade(off));
+  UserTracker u(off, load_tracker_models(off));
   EXPECT_EQ(search(u, frame, scan).out.status, TrackStatus::kTracking);
 }
 
@@ -286,7 +286,7 @@ TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
   const TrackerParams p;
   const int scan = FaceDetector(p, load_face_cascade(p)).scan_tiles(frame.size());
   // WHEN the tracker searches
-  UserTracker t(p, load_face_cascade(p));
+  UserTracker t(p, load_tracker_models(p));
   const Searched s = search(t, frame, 2 * scan);
   std::printf("poster: %d frames, %d refused (%lld no body colour, %lld off the frame, %lld no torso)\n", s.frames,
               s.refused_frames, static_cast<long long>(t.refusals(FaceRefusal::kNoBodyColour)),
@@ -301,7 +301,7 @@ TEST(UserTrackerBodyCheck, FaceOnAPosterIsRefusedAndTheScanGoesOnToThePerson) {
   // AND without the evidence check the printed face (the larger, found first) starts the track
   TrackerParams off = p;
   off.body_fit.min_separation = 0;
-  UserTracker u(off, load_face_cascade(off));
+  UserTracker u(off, load_tracker_models(off));
   const Searched o = search(u, frame, scan);
   ASSERT_EQ(o.out.status, TrackStatus::kTracking);
   ASSERT_TRUE(o.out.face.has_value());
@@ -314,7 +314,7 @@ TEST(UserTrackerBodyCheck, TheNextFaceOfTheSameSearchIsTriedAfterARefusal) {
   TrackerParams p;
   p.face.scan_slice_pixels = 0;
   const cv::Mat frame = poster_and_astronaut();
-  UserTracker t(p, load_face_cascade(p));
+  UserTracker t(p, load_tracker_models(p));
   const TrackOutput out = t.process(frame);
   ASSERT_EQ(out.status, TrackStatus::kTracking);
   EXPECT_EQ(out.refused, FaceRefusal::kNoBodyColour);  // the printed face, refused on this frame

@@ -86,7 +86,7 @@ TEST(PersonSearch, AUserWhoseFaceTheCascadeCannotFindIsStartedFromTheBody) {
   for (const bool on : {true, false}) {
     TrackerParams tp = with_person(on);
     tp.face.upscale = 1.0;
-    UserTracker tracker(tp, load_face_cascade(tp));
+    UserTracker tracker(tp, load_tracker_models(tp));
     int first = -1, tracking = 0;
     double iou_min = 1.0;
     for (int i = 0; i < 150; ++i) {
@@ -140,7 +140,7 @@ TEST(PersonSearch, AUserWhoWalkedOutIsTakenBackByTheBodyAndTheWalkerNever) {
   const SyntheticWorld world(sp, Scenario::parse(kWalkOut, "walk-out.yaml"), 1);
   TrackerParams tp = with_person(true);
   tp.face.upscale = 1.0;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   const cv::Rect2d frame(0, 0, sp.width, sp.height);
   int back_in_view = -1, retaken = -1, leaving = 0, elsewhere = 0, lost_frames = 0;
   double iou_end = 0;
@@ -184,13 +184,13 @@ TEST(PersonSearch, AMissingModelIsNamed) {
   TrackerParams tp = with_person(true);
   tp.person.models_dir = "models/no-such-folder";
   try {
-    UserTracker tracker(tp, load_face_cascade(tp));
+    UserTracker tracker(tp, load_tracker_models(tp));
     FAIL() << "built without its model";
   } catch (const PoseModelError& e) {
     EXPECT_NE(std::string(e.what()).find("no-such-folder/pose_detection.onnx"), std::string::npos) << e.what();
   }
   tp.person.enabled = false;  // off: no model read
-  EXPECT_NO_THROW(UserTracker(tp, load_face_cascade(tp)));
+  EXPECT_NO_THROW(UserTracker(tp, load_tracker_models(tp)));
 }
 
 }  // namespace

@@ -58,7 +58,7 @@ Outcome run(double min_torso_match, double user_north = 3.0, double min_window_s
   TrackerParams tp;
   tp.recheck_min_torso_match = min_torso_match;
   tp.dsst.min_window_side = min_window_side;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   Outcome o;
   const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
   for (int i = 0; i < frames; ++i) {
@@ -125,7 +125,7 @@ duration_s: 10
   std::snprintf(without_user, sizeof without_user, kScene, "30.0");
   const SyntheticWorld user(sp, Scenario::parse(with_user, "user.yaml"), 1);
   const SyntheticWorld wall(sp, Scenario::parse(without_user, "wall.yaml"), 1);
-  UserTracker tracker{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker tracker{TrackerParams{}, load_tracker_models(TrackerParams{})};
   int on_wall = 0;  // TRACKING frames without the user
   double psr_max = 0;
   for (int i = 0; i < 150; ++i) {
@@ -164,7 +164,7 @@ duration_s: 9
   auto tracking_while_out = [&](int weak_recheck_frames) {
     TrackerParams tp;
     tp.weak_recheck_frames = weak_recheck_frames;
-    UserTracker tracker(tp, load_face_cascade(tp));
+    UserTracker tracker(tp, load_tracker_models(tp));
     int out_of_view = 0, tracking = 0;
     const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
     for (int i = 0; i < frames; ++i) {
@@ -215,7 +215,7 @@ duration_s: 12
   auto run_with = [&](int memory_frames) {
     TrackerParams tp;
     tp.user_memory_frames = memory_frames;
-    UserTracker tracker(tp, load_face_cascade(tp));
+    UserTracker tracker(tp, load_tracker_models(tp));
     Run r;
     const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
     for (int i = 0; i < frames; ++i) {
@@ -251,7 +251,7 @@ struct ReFound {
 ReFound refind(const std::string& yaml, const std::function<void(SyntheticFrame&)>& edit = {}) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::parse(yaml, "refind.yaml"), 1);
-  UserTracker tracker{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker tracker{TrackerParams{}, load_tracker_models(TrackerParams{})};
   ReFound r;
   const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
   for (int i = 0; i < frames && r.frame < 0; ++i) {
@@ -306,7 +306,7 @@ TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirClothes) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::parse(yaml, "half-hidden.yaml"), 1), user_alone(sp, Scenario::parse(alone, "alone.yaml"), 1);
   const TrackerParams tp;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   bool lost = false;
   for (int i = 0; i < static_cast<int>(world.scenario().duration_s() * sp.fps); ++i) {
     const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);

@@ -117,7 +117,7 @@ TEST(TrackerRange, AUserAtEightMetresIsFoundByTheScanAndTracked) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
   const TrackerParams tp;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   const int scan = FaceDetector(tp, load_face_cascade(tp)).scan_tiles(cv::Size(sp.width, sp.height));
   int found_at = -1;
   double worst = 1.0;
@@ -145,7 +145,7 @@ TEST(TrackerRange, AUserAtEightMetresIsFoundByTheScanAndTracked) {
 TEST(TrackerRange, AFarUsersBoxKeepsItsWidthThroughTheReChecks) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("far"), 1);
-  UserTracker tracker{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker tracker{TrackerParams{}, load_tracker_models(TrackerParams{})};
   int tracked = 0;
   double widest = 0, narrowest = 10;
   for (int i = 0; i < 40 * sp.fps; ++i) {

@@ -28,7 +28,7 @@ TEST(TrackerTour, BoxStaysOnThePersonThroughout) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("tour"), 1);
   const TrackerParams tp;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
   int found_at = -1, worst_frame = -1;
   double worst_iou = 1.0;
@@ -63,7 +63,7 @@ double worst_scale_error(int face_recheck_frames, int frames, int judged_from,
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
   TrackerParams tp;
   tp.face_recheck_frames = face_recheck_frames;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   double worst = 0;
   for (int i = 0; i < frames; ++i) {
     const SyntheticFrame f = world.render(i / sp.fps, i, path(i));
@@ -122,7 +122,7 @@ int frames_until_lost(int face_recheck_misses, double face_miss_psr) {
   TrackerParams tp;
   tp.face_recheck_misses = face_recheck_misses;
   tp.face_miss_psr = face_miss_psr;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   const int hide_from = 50, frames = 250;
   for (int i = 0; i < frames; ++i) {
     SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
@@ -166,7 +166,7 @@ TEST(TrackerTour, FaceBoxOnTheStartFrameAndOnEachRecheckFrameOnly) {
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
   const TrackerParams tp;
   ASSERT_GT(tp.face_recheck_frames, 0);
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   int found_at = -1, faces = 0;
   // Up to the third re-check after the start (the scan finds the user within its first tiles, large faces first).
   for (int i = 0; found_at < 0 ? i <= scan_frames(tp, sp) : i <= found_at + 3 * tp.face_recheck_frames + 1; ++i) {
@@ -197,7 +197,7 @@ TEST(TrackerTour, ManualTrackPublishesTheFaceItsRecheckFindsAndReanchorsOn) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
   const TrackerParams tp;
-  UserTracker tracker(tp, load_face_cascade(tp));
+  UserTracker tracker(tp, load_tracker_models(tp));
   const cv::Rect2d truth0(world.render(0.0, 0, std::nullopt).truth.user_box);
   // 1.2x the true box about its centre, then 8 % of its width to the right.
   const cv::Rect2d off(truth0.x - 0.1 * truth0.width + 0.08 * truth0.width, truth0.y - 0.1 * truth0.height,

@@ -42,7 +42,7 @@ cv::Mat astronaut_scene() {
 TEST(UserTracker, StaysOnThePersonOfTheRealSequence) {
   const auto frames = load(kSample);
   ASSERT_EQ(frames.size(), 53u);
-  UserTracker t{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker t{TrackerParams{}, load_tracker_models(TrackerParams{})};
   ASSERT_EQ(t.set_box(kSampleInit), "");
   TrackOutput out;
   for (size_t i = 0; i < frames.size(); ++i) {
@@ -65,7 +65,7 @@ TEST(UserTracker, CrossingSuccessAboveTheMeasuredFloor) {
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "needs " << dir << " (OTB Crossing is not redistributable)";
   const auto frames = load(dir);
   ASSERT_EQ(frames.size(), 120u);
-  UserTracker t{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker t{TrackerParams{}, load_tracker_models(TrackerParams{})};
   ASSERT_EQ(t.set_box(*frames[0].truth), "");
   std::vector<double> ious, errors;
   for (const auto& f : frames) {
@@ -82,7 +82,7 @@ TEST(UserTracker, CrossingSuccessAboveTheMeasuredFloor) {
 TEST(UserTracker, CutToAnotherSceneIsLostThenTheFaceSearchFindsTheNewUser) {
   const auto frames = load(kSample);
   const TrackerParams p;
-  UserTracker t(p, load_face_cascade(p));
+  UserTracker t(p, load_tracker_models(p));
   t.set_box(kSampleInit);
   for (int i = 0; i < 15; ++i) ASSERT_EQ(t.process(frames[static_cast<size_t>(i)].image).status, TrackStatus::kTracking);
   const cv::Rect2d last_good = t.last().box;
@@ -123,7 +123,7 @@ TEST(UserTracker, CutToAnotherSceneIsLostThenTheFaceSearchFindsTheNewUser) {
 // From frame 20 on, a grey board covers the man (he is within x 230..350, y 30..200). Every frame's output.
 std::vector<TrackOutput> covered_run(const TrackerParams& p) {
   const auto frames = load(kSample);
-  UserTracker t(p, load_face_cascade(p));
+  UserTracker t(p, load_tracker_models(p));
   t.set_box(kSampleInit);
   std::vector<TrackOutput> outs;
   for (int i = 0; i < 53; ++i) {
@@ -160,7 +160,7 @@ TEST(UserTracker, CoveredPersonIsLostThenSearchedForWithoutAFace) {
 TEST(UserTracker, PictureDropoutIsLostThenRefoundByTheLastGoodFilter) {
   const auto frames = load(kSample);
   const TrackerParams p;
-  UserTracker t(p, load_face_cascade(p));
+  UserTracker t(p, load_tracker_models(p));
   t.set_box(kSampleInit);
   for (int i = 0; i < 15; ++i) ASSERT_EQ(t.process(frames[static_cast<size_t>(i)].image).status, TrackStatus::kTracking);
   const cv::Mat black(frames[0].image.size(), CV_8UC3, cv::Scalar(0, 0, 0));
@@ -189,7 +189,7 @@ TEST(UserTracker, ALostUserTooSmallForTheScanIsNotScannedFor) {
   auto lost_then_back = [&](int min_face_px) {
     TrackerParams p;
     p.face.min_face_px = min_face_px;
-    UserTracker t(p, load_face_cascade(p));
+    UserTracker t(p, load_tracker_models(p));
     t.set_box(kSampleInit);
     for (int i = 0; i < 15; ++i) t.process(frames[static_cast<size_t>(i)].image);
     const cv::Mat black(frames[0].image.size(), CV_8UC3, cv::Scalar(0, 0, 0));
@@ -207,7 +207,7 @@ TEST(UserTracker, ALostUserTooSmallForTheScanIsNotScannedFor) {
 
 TEST(UserTracker, SameFramesGiveIdenticalOutputs) {
   const auto frames = load(kSample);
-  UserTracker a{TrackerParams{}, load_face_cascade(TrackerParams{})}, b{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker a{TrackerParams{}, load_tracker_models(TrackerParams{})}, b{TrackerParams{}, load_tracker_models(TrackerParams{})};
   a.set_box(kSampleInit);
   b.set_box(kSampleInit);
   for (const auto& f : frames) {
@@ -221,7 +221,7 @@ TEST(UserTracker, SameFramesGiveIdenticalOutputs) {
 
 TEST(UserTracker, ManualBoxResetAndBadInput) {
   const auto frames = load(kSample);
-  UserTracker t{TrackerParams{}, load_face_cascade(TrackerParams{})};
+  UserTracker t{TrackerParams{}, load_tracker_models(TrackerParams{})};
   // No face in these frames (the man has his back to the camera): searching.
   EXPECT_EQ(t.process(frames[0].image).status, TrackStatus::kSearching);
   EXPECT_EQ(t.last().track_id, 0);
