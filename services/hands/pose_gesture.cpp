@@ -19,6 +19,14 @@ double line_y_at(cv::Point2f a, cv::Point2f b, double x) {
   return a.y + (x - a.x) * (static_cast<double>(b.y) - a.y) / dx;
 }
 
+// Angle between two vectors, degrees 0..180 (0 when either is zero).
+double angle_deg(cv::Point2f u, cv::Point2f v) {
+  const double nu = length(u), nv = length(v);
+  if (nu == 0 || nv == 0) return 0.0;
+  const double c = (static_cast<double>(u.x) * v.x + static_cast<double>(u.y) * v.y) / (nu * nv);
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / M_PI;
+}
+
 cv::Point2f at(const PoseLandmarks& lm, int i) { return {lm[i].x, lm[i].y}; }
 bool seen(const PoseLandmarks& lm, int i, double min_visibility) { return lm[i].visibility >= min_visibility; }
 
@@ -28,6 +36,7 @@ struct Torso {
   cv::Point2f shoulder_mid, body_centre;
   double span_min_x = 0, span_max_x = 0;
   double shoulder_width = 0;  //!< pixels
+  double height = 0;          //!< shoulders' midpoint to hips' midpoint, pixels
   cv::Point2f face;
   double face_radius = 0;  //!< pixels
   bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
@@ -43,6 +52,7 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::o
   const cv::Point2f hip_mid = (t.left_hip + t.right_hip) * 0.5f;
   t.body_centre = (t.shoulder_mid + hip_mid) * 0.5f;
   const double torso_height = length(hip_mid - t.shoulder_mid);
+  t.height = torso_height;
   const auto xs = {t.left_shoulder.x, t.right_shoulder.x, t.left_hip.x, t.right_hip.x};
   t.span_min_x = std::min(xs) - p.span_margin * torso_height;
   t.span_max_x = std::max(xs) + p.span_margin * torso_height;
@@ -83,7 +93,13 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   const bool straight = a.straightness >= p.out_min_straightness;
   // A straight arm nearer down than OUT hangs, unless its wrist lies between the hips in x: an arm cannot hang
   // through the body, so that hand is held in front of it (the hand low in front, seen from the front).
-  a.wrist_between_hips = W.x > std::min(t.left_hip.x, t.right_hip.x) && W.x < std::max(t.left_hip.x, t.right_hip.x);
+  // A hanging arm is straight at the elbow; a hand held low in front bends it (the forearm turns forward and in
+  // to the belly), and its wrist may sit at a hip joint's x: for such an arm the hips' extent is grown a little.
+  a.elbow_bend_deg = angle_deg(E - S, W - E);
+  const double hips_margin =
+      a.elbow_bend_deg >= p.front_hips_margin_min_bend_deg ? p.front_between_hips_margin * t.height : 0.0;
+  a.wrist_between_hips = W.x > std::min(t.left_hip.x, t.right_hip.x) - hips_margin &&
+                         W.x < std::max(t.left_hip.x, t.right_hip.x) + hips_margin;
   const bool hanging = straight && below_centre && !(p.front_wrist_between_hips && a.wrist_between_hips);
   // The paper's Alg. 1 takes a hand beside the user's box for an arm out: a straight arm on its way out (or down
   // and away) is out once its hand leaves the box, a little nearer down than an arm judged without the box.
@@ -119,12 +135,12 @@ const char* arm_pose_name(ArmPose a) {
 
 std::string describe_pose_gesture(const PoseGesture& g) {
   const auto arm = [](const char* side, const ArmReading& a) {
-    char text[96];
+    char text[128];
     if (a.pose == ArmPose::Unseen)
       std::snprintf(text, sizeof text, "%s %s", side, arm_pose_name(a.pose));
     else
-      std::snprintf(text, sizeof text, "%s %s (s %.2f, %.0f deg%s%s)", side, arm_pose_name(a.pose), a.straightness, a.from_down_deg,
-                    a.wrist_between_hips ? ", between the hips" : "", a.hand_beside_box ? ", beside the box" : "");
+      std::snprintf(text, sizeof text, "%s %s (s %.2f, %.0f deg, elbow %.0f deg%s%s)", side, arm_pose_name(a.pose),
+                    a.straightness, a.from_down_deg, a.elbow_bend_deg, a.wrist_between_hips ? ", between the hips" : "", a.hand_beside_box ? ", beside the box" : "");
     return std::string(text);
   };
   return std::string(g.rule) + "; " + arm("left", g.left) + ", " + arm("right", g.right);

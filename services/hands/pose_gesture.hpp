@@ -24,6 +24,7 @@ struct ArmReading {
   double reach = 0;               //!< |W-S|, pixels
   double straightness = 0;        //!< |W-S| / (|S-E| + |E-W|)
   double from_down_deg = 0;       //!< angle between shoulder->wrist and image-down, 0..180
+  double elbow_bend_deg = 0;      //!< angle between the upper arm and the forearm in the image, 0 (straight)..180
   bool wrist_between_hips = false;        //!< the wrist between the hips in x
   bool hand_beside_box = false;   //!< the hand's point outside the user box
 };

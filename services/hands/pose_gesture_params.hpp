@@ -29,6 +29,12 @@ struct PoseGestureParams {
                                       //!< straight down, rests (a hand on the hip)
   bool front_wrist_between_hips = true; //!< FRONT: a straight arm whose wrist lies between the hips in x is held in
                                         //!< front of the body, not hanging (the hand low in front, seen from ahead)
+  double front_between_hips_margin = 0.1; //!< ... between the hip joints grown by this many torso heights each side
+                                          //!< when the elbow bends (a hanging arm's wrist is beside the thigh, a
+                                          //!< hip joint's width outside it; a hand held low in front, the forearm
+                                          //!< turned in to the belly, may sit at the joint's x)
+  double front_hips_margin_min_bend_deg = 30; //!< ... bends: upper arm to forearm at least this in the image (e2e:
+                                              //!< a hand low in front 37-73 deg, a hanging arm 0-17 deg)
   double hips_min_visibility = 0.4;   //!< FRONT is judged only with both hips at least this visible (the hip line and
                                       //!< p_bc measured); lower than min_visibility: hips in the frame's bottom 40 px
                                       //!< (the drone above the user) reach it on 79 % of e2e frames (0.5: 66 %),
@@ -52,6 +58,8 @@ struct PoseGestureParams {
     v("out_dominant_reach", out_dominant_reach, 0.0, 10.0, "both arms OUT: the one reaching this many times further from its shoulder commands alone (0: off)");
     v("rest_max_from_down_deg", rest_max_from_down_deg, 0.0, 180.0, "REST: a bent arm with the hand below the body centre, at most this far from down");
     v("front_wrist_between_hips", front_wrist_between_hips, "FRONT: a straight arm with the wrist between the hips in x is in front of the body, not hanging");
+    v("front_between_hips_margin", front_between_hips_margin, 0.0, 1.0, "FRONT: the hips' extent in x the wrist is between, grown by this many torso heights each side for a bent arm");
+    v("front_hips_margin_min_bend_deg", front_hips_margin_min_bend_deg, 0.0, 180.0, "FRONT: the hips' margin applies to an arm bent at the elbow at least this much");
     v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");
     v("hips_min_frame_margin", hips_min_frame_margin, 0.0, 2.0, "FRONT is judged only with both hips at least this many torso heights above the frame's bottom edge");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");

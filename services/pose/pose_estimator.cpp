@@ -82,6 +82,7 @@ PoseEstimator::PoseEstimator(const PoseParams& params, PoseModels models)
 
 void PoseEstimator::reset() {
   next_roi_.reset();
+  roi_correction_ = RoiCorrection{};
   smoothing_.reset();
 }
 
@@ -155,6 +156,22 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
       r.nonfinite = true;
       return lost(r);
     }
+    if (out.pose_flag < params_.pose_flag_threshold && params_.reseed_in_frame) {
+      // The detector in the same frame; when its ROI finds the pose, the track corrects the auxiliary points'
+      // ROIs by what separates the two from now on.
+      ++counters_.reseeds;
+      bool nonfinite = false;
+      r.detector_ran = true;
+      const std::optional<Seed> s = seed(bgr, user_box, nonfinite);
+      if (s) {
+        ++counters_.reseeds_found;
+        roi_correction_.shift = s->roi.centre - aux_roi_.centre;
+        roi_correction_.scale = aux_roi_.size > 0 ? s->roi.size / aux_roi_.size : 1.0f;
+        roi_correction_.turn = s->roi.rotation - aux_roi_.rotation;
+        r.roi = s->roi;
+        out = s->out;
+      }
+    }
   } else {
     bool nonfinite = false;
     r.detector_ran = true;
@@ -168,7 +185,9 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
   r.pose_flag = out.pose_flag;
   if (out.pose_flag < params_.pose_flag_threshold) return lost(r);
   smoothing_.apply(out.landmarks, out.aux, utime);
-  next_roi_ = roi_from_alignment(out.aux[0], out.aux[1], static_cast<float>(params_.roi_scale));
+  aux_roi_ = roi_from_alignment(out.aux[0], out.aux[1], static_cast<float>(params_.roi_scale));
+  next_roi_ = PoseRoi{aux_roi_.centre + roi_correction_.shift, aux_roi_.size * roi_correction_.scale,
+                      aux_roi_.rotation + roi_correction_.turn};
   r.found = true;
   r.landmarks = out.landmarks;
   r.counters = counters_;

@@ -28,6 +28,8 @@ struct PoseCounters {
   int64_t detector_runs = 0;      //!< frames the person detector ran on
   int64_t frames_tracked = 0;     //!< frames whose ROI came from the previous frame's landmarks
   int64_t nonfinite_outputs = 0;  //!< frames a net gave NaN/Inf on (no pose that frame)
+  int64_t reseeds = 0;            //!< tracked frames without a pose seeded again in the same frame (reseed_in_frame)
+  int64_t reseeds_found = 0;      //!< ... of which the seed found the pose
 };
 
 struct PoseResult {
@@ -69,7 +71,15 @@ class PoseEstimator {
   PersonDetector detector_;
   LandmarkModel landmark_;
   LandmarkSmoothing smoothing_;
-  std::optional<PoseRoi> next_roi_;  // from this frame's auxiliary points
+  std::optional<PoseRoi> next_roi_;  // from this frame's auxiliary points, corrected by roi_correction_
+  PoseRoi aux_roi_;                  // next_roi_ as the auxiliary points give it
+  // What the track changes in the auxiliary points' ROI (reseed_in_frame): the seed's ROI that found the pose
+  // against the one they gave, which did not.
+  struct RoiCorrection {
+    cv::Point2f shift;     //!< pixels
+    float scale = 1;       //!< size ratio
+    float turn = 0;        //!< radians
+  } roi_correction_;
   PoseCounters counters_;
 };
 

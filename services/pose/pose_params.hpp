@@ -70,6 +70,11 @@ struct PoseParams {
   // within 0.2 both).
   int seed_candidates = 1;                //!< detections whose ROI the landmark model tries when seeding
   double box_roi_scale = 1.0;             //!< box ROI side / the user box's long side (0: no box ROI)
+  // A tracked frame whose pose flag falls below the threshold (ours): the detector seeds the same frame (MediaPipe
+  // loses it and seeds the next), and when the seed finds the pose the track corrects the auxiliary points' next
+  // ROIs by what separates the seed's ROI from theirs. A body at the frame's edge: the aux points' ROI 16 px
+  // below the detector's scored 0.4, the detector's 0.9, frame after frame; every other frame had no pose.
+  bool reseed_in_frame = true;
   PoseSmoothingParams smoothing;
 
   template <class V>
@@ -87,6 +92,7 @@ struct PoseParams {
     v("track_margin", track_margin, 0.0, 5.0, "tracked hip centre outside the user box grown by this share: detect again");
     v("seed_candidates", seed_candidates, 1, 10, "seeding: detections (hips in the user box) whose ROI the landmark model tries");
     v("box_roi_scale", box_roi_scale, 0.0, 4.0, "seeding: when no detection gives a pose, the user box's own ROI, side = this x its long side (0: none)");
+    v("reseed_in_frame", reseed_in_frame, "a tracked frame without a pose is seeded again at once, and the track corrects its ROIs by the seed's (ours)");
     v.group("smoothing", smoothing);
   }
   void check(const ParamCheck& c) const { c.choice("model", model, {"lite", "full"}); }

@@ -225,6 +225,31 @@ TEST(PoseGesture, AStraightArmWithTheWristBetweenTheHipsIsInFrontNotHanging) {
   EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, in_front), off).right.pose, ArmPose::Rest);
 }
 
+TEST(PoseGesture, ABentArmWithTheWristAtTheHipJointIsInFrontAStraightOneHangs) {
+  // The hand low in front seen from afar: the upper arm down, the forearm turned in to the belly (bent 46 deg at
+  // the elbow in the image, yet 0.95 straight), the wrist at x 290, 5 px outside the hips (295..345): within
+  // front_between_hips_margin (0.1 torso heights, 10 px) of them. A straight arm ending there hangs.
+  const Arm bent_in{{276, 170}, {290, 185}};
+  const PoseGesture g = read_pose_gesture(standing({{365, 150}, {368, 200}}, bent_in), PoseGestureParams{});
+  EXPECT_GT(g.right.straightness, PoseGestureParams{}.out_min_straightness);
+  EXPECT_NEAR(g.right.elbow_bend_deg, 46.2, 0.5);
+  EXPECT_TRUE(g.right.wrist_between_hips);
+  ASSERT_EQ(g.kind, HandKind::Front) << g.rule;
+  EXPECT_GT(g.vector.y, 0);
+  PoseGestureParams no_margin;
+  no_margin.front_between_hips_margin = 0;
+  EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, bent_in), no_margin).right.pose, ArmPose::Rest);
+  PoseGestureParams straighter;
+  straighter.front_hips_margin_min_bend_deg = 50;
+  EXPECT_EQ(read_pose_gesture(standing({{365, 150}, {368, 200}}, bent_in), straighter).right.pose, ArmPose::Rest);
+  const Arm hanging{{285, 145}, {290, 190}};
+  const PoseGesture h = read_pose_gesture(standing({{365, 150}, {368, 200}}, hanging), PoseGestureParams{});
+  EXPECT_LT(h.right.elbow_bend_deg, 10);
+  EXPECT_FALSE(h.right.wrist_between_hips);
+  EXPECT_EQ(h.right.pose, ArmPose::Rest);
+  EXPECT_EQ(h.kind, HandKind::None);
+}
+
 TEST(PoseGesture, NonFiniteLandmarksGiveNothing) {
   PoseLandmarks lm = standing({{365, 150}, {368, 200}}, kRightOutToImageLeft);
   lm[L::kLeftShoulder].x = std::numeric_limits<float>::quiet_NaN();
