@@ -148,7 +148,8 @@ TEST(HandsSynthetic, TheLastFaceIsCarriedWithTheBoxUntilTheTrackChanges) {
   cv::Rect2f high = f.truth.user_box;
   high.y -= 0.15f * f.truth.face_box.height;
   SkinHandMethod obs(p, SkinModel::load(resolve_project_path(p.skin.model)));
-  // The box from the face would be the true one (hands.box_from_face): the high box is on the frames without.
+  // With the face given the neck below it is cleared (hands.neck_in_faces), whatever the box: the high box is on
+  // the frames without it.
   EXPECT_EQ(obs.detect(f.bgr, UserView{high, cv::Rect2f(f.truth.face_box), 1}).kind, HandKind::None);
   for (int i = 0; i < 3; ++i) {
     const HandResult r = obs.detect(f.bgr, UserView{high, std::nullopt, 1});
