@@ -41,6 +41,12 @@ struct FlightParams {
   // no longer covers the neck, and Alg. 2 takes the neck for a hand in front above the centre: CLOSER again,
   // a loop that ends in the user. Ours, not the paper's (its users stood further off); 0 turns it off.
   double closest_box_height_ratio = 0.75;
+  // No closing in while the user box's hips, with a margin (this many box heights below the box's top: the preset
+  // box puts the hip joints at about 0.6), are at or below the image's bottom edge. The hands stage reads a hand
+  // in front against the hips: closer than that, seen from a drone above the user, FURTHER, the way back, could
+  // not be given (a closed-loop tour ended CLOSER at 2.2 m with the hips on the bottom edge, and FURTHER was no
+  // command for 4 s). Ours; 0 turns it off.
+  double closest_hips_box_ratio = 0.7;
   // With MAVLink, the autopilot's own offboard-loss failsafe (PX4 COM_OF_LOSS_T, ArduPilot GUID_TIMEOUT) is what
   // stops the vehicle when this process goes quiet: ENGAGE is refused unless the autopilot reports one no
   // longer than this.
@@ -69,6 +75,8 @@ struct FlightParams {
     v("face_band_ratio", face_band_ratio, 0.0, 1.0, "top fraction of the user box taken as the face band");
     v("closest_box_height_ratio", closest_box_height_ratio, 0.0, 10.0,
       "no closing in while the user box is this many image heights tall (0: no limit)");
+    v("closest_hips_box_ratio", closest_hips_box_ratio, 0.0, 2.0,
+      "no closing in while the point this many box heights below the user box's top is at the image's bottom (0: no limit)");
     v("max_autopilot_loss_s", max_autopilot_loss_s, 0.0, 60.0,
       "MAVLink: refuse ENGAGE unless the autopilot's offboard-loss failsafe (COM_OF_LOSS_T/GUID_TIMEOUT) is <= this, s");
   }

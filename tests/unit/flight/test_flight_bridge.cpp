@@ -162,10 +162,35 @@ TEST(FlightBridge, NoClosingInOnceTheUserFillsTheImage) {
     EXPECT_EQ(sp.reasons & reason::kViewLimit, 0) << k.what;
   }
   p.closest_box_height_ratio = 0;
+  p.closest_hips_box_ratio = 0;  // a 900 px box has its hips below the image too
   FlightBridge b{p};
   BridgeInputs in = ready(closer);
   in.track->box[3] = 900;
   EXPECT_DOUBLE_EQ(b.update(in).velocity[0], 0.5) << "closest_box_height_ratio 0: no limit";
+}
+
+TEST(FlightBridge, NoClosingInOnceTheUsersHipsReachTheImagesBottom) {
+  FlightParams p;  // closest_hips_box_ratio 0.7; a 480 px image; boxes 300 px tall, well below the 360 px range limit
+  const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
+  struct Case { const char* what; GestureCommand c; double box_y; double vx; bool held; };
+  for (const Case& k : {Case{"closer, hips line at 479 px", closer, 269, 0.5, false},
+                        Case{"closer, hips line at 480 px", closer, 270, 0.0, true},
+                        Case{"closer, hips below the image", closer, 300, 0.0, true},
+                        Case{"further, hips below the image", further, 300, -0.5, false}}) {
+    FlightBridge b{p};
+    BridgeInputs in = ready(k.c);
+    in.track->box[1] = k.box_y;  // 270 + 0.7 x 300 = 480
+    in.track->box[3] = 300;
+    const Setpoint sp = b.update(in);
+    EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
+    EXPECT_EQ((sp.reasons & reason::kRangeLimit) != 0, k.held) << k.what;
+  }
+  p.closest_hips_box_ratio = 0;
+  FlightBridge b{p};
+  BridgeInputs in = ready(closer);
+  in.track->box[1] = 300;
+  in.track->box[3] = 300;
+  EXPECT_DOUBLE_EQ(b.update(in).velocity[0], 0.5) << "closest_hips_box_ratio 0: no limit";
 }
 
 TEST(FlightBridge, SpeedIsClippedToTheLimitsAndSaysSo) {
