@@ -145,11 +145,11 @@ TEST(FlightBridge, MotionsThatTakeTheFaceOutOfViewAreHeld) {
 }
 
 TEST(FlightBridge, NoClosingInOnceTheUserFillsTheImage) {
-  FlightParams p;  // closest_box_height_ratio 0.75: a box of 360 px in a 480 px image
+  FlightParams p;  // closest_box_height_ratio 0.65: a box of 312 px in a 480 px image
   const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
   struct Case { const char* what; GestureCommand c; double box_h; double vx; bool held; };
-  for (const Case& k : {Case{"closer, box 359 px", closer, 359, 0.5, false},
-                        Case{"closer, box 360 px", closer, 360, 0.0, true},
+  for (const Case& k : {Case{"closer, box 311 px", closer, 311, 0.5, false},
+                        Case{"closer, box 312 px", closer, 312, 0.0, true},
                         Case{"closer, box beyond the image", closer, 900, 0.0, true},
                         Case{"further, box 600 px", further, 600, -0.5, false}}) {
     FlightBridge b{p};
@@ -170,7 +170,7 @@ TEST(FlightBridge, NoClosingInOnceTheUserFillsTheImage) {
 }
 
 TEST(FlightBridge, NoClosingInOnceTheUsersHipsReachTheImagesBottom) {
-  FlightParams p;  // closest_hips_box_ratio 0.7; a 480 px image; boxes 300 px tall, well below the 360 px range limit
+  FlightParams p;  // closest_hips_box_ratio 0.7; a 480 px image; boxes 300 px tall, below the 312 px range limit
   const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
   struct Case { const char* what; GestureCommand c; double box_y; double vx; bool held; };
   for (const Case& k : {Case{"closer, hips line at 479 px", closer, 269, 0.5, false},
