@@ -163,6 +163,8 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
       bool nonfinite = false;
       r.detector_ran = true;
       const std::optional<Seed> s = seed(bgr, user_box, nonfinite);
+      if (nonfinite) ++counters_.nonfinite_outputs;  // as a seeding frame's: the frame is refused, not read
+      r.nonfinite = nonfinite;
       if (s) {
         ++counters_.reseeds_found;
         roi_correction_.shift = s->roi.centre - aux_roi_.centre;
