@@ -169,7 +169,7 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
         ++counters_.reseeds_found;
         roi_correction_.shift = s->roi.centre - aux_roi_.centre;
         roi_correction_.scale = aux_roi_.size > 0 ? s->roi.size / aux_roi_.size : 1.0f;
-        roi_correction_.turn = s->roi.rotation - aux_roi_.rotation;
+        roi_correction_.turn = normalize_radians(s->roi.rotation - aux_roi_.rotation);
         r.roi = s->roi;
         out = s->out;
       }
@@ -189,7 +189,7 @@ PoseResult PoseEstimator::estimate(const cv::Mat& bgr, const cv::Rect2f& user_bo
   smoothing_.apply(out.landmarks, out.aux, utime);
   aux_roi_ = roi_from_alignment(out.aux[0], out.aux[1], static_cast<float>(params_.roi_scale));
   next_roi_ = PoseRoi{aux_roi_.centre + roi_correction_.shift, aux_roi_.size * roi_correction_.scale,
-                      aux_roi_.rotation + roi_correction_.turn};
+                      normalize_radians(aux_roi_.rotation + roi_correction_.turn)};
   r.found = true;
   r.landmarks = out.landmarks;
   r.counters = counters_;

@@ -6,15 +6,10 @@
 #include <opencv2/imgproc.hpp>
 
 namespace gpilot {
-namespace {
-
-// NormalizeRadians of MediaPipe's calculators: into [-pi, pi).
 float normalize_radians(float a) {
   const double two_pi = 2.0 * CV_PI;
   return static_cast<float>(a - two_pi * std::floor((a + CV_PI) / two_pi));
 }
-
-}  // namespace
 
 PoseRoi roi_from_alignment(const cv::Point2f& centre, const cv::Point2f& scale_point, float scale) {
   const cv::Point2f d = scale_point - centre;

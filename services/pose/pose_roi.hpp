@@ -21,6 +21,9 @@ struct PoseRoi {
 // MediaPipe's rotation_vector_target_angle_degrees: the centre-to-scale-point vector points up in the crop.
 constexpr float kPoseRoiTargetAngle = static_cast<float>(CV_PI / 2.0);
 
+// NormalizeRadians of MediaPipe's calculators: a into [-pi, pi).
+float normalize_radians(float a);
+
 // The ROI from an alignment centre and scale point (a detection's keypoints 0 and 1, or the previous frame's
 // auxiliary landmarks 33 and 34), grown by scale (PoseParams::roi_scale).
 PoseRoi roi_from_alignment(const cv::Point2f& centre, const cv::Point2f& scale_point, float scale);

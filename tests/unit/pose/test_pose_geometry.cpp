@@ -138,6 +138,15 @@ TEST(PoseRoi, RotationSignHeadToTheRightTurnsTheCropsUpToTheRight) {
   EXPECT_NEAR(roi_from_alignment({0, 0}, {10, -10}, 1.0f).rotation, CV_PI / 4, 1e-6);
 }
 
+TEST(PoseRoi, NormalizeRadiansWrapsIntoMinusPiToPi) {
+  // A turn and a rotation summed (the track's corrected ROI) can leave [-pi, pi): wrapped back, same direction.
+  EXPECT_NEAR(normalize_radians(0.5f), 0.5f, 1e-6);
+  EXPECT_NEAR(normalize_radians(static_cast<float>(CV_PI) + 0.25f), -CV_PI + 0.25, 1e-6);
+  EXPECT_NEAR(normalize_radians(-static_cast<float>(CV_PI) - 0.25f), CV_PI - 0.25, 1e-6);
+  EXPECT_NEAR(normalize_radians(static_cast<float>(5 * CV_PI + 0.5)), -CV_PI + 0.5, 1e-5);
+  EXPECT_NEAR(normalize_radians(static_cast<float>(-7 * CV_PI - 0.5)), CV_PI - 0.5, 1e-5);
+}
+
 TEST(PoseRoi, AuxiliaryPointsMakeTheSameRoiAsDetectionKeypoints) {
   // GIVEN the aux points 33 (centre) and 34 (scale point) of a leaning person: the same rule as a detection
   const PoseRoi r = roi_from_alignment({320, 260}, {350, 140}, 1.25f);
