@@ -22,6 +22,8 @@ struct DecideParams {
   double moving_ratio = 0.07;   //!< a hand whose median position over the last moving_frames frames is this many
   int moving_frames = 2;        //!< box widths from its median over the moving_frames before is moving: no evidence
   int direction_frames = 8;     //!< FINE/UP/DOWN direction: mean of the last this many supporting vectors
+  int front_hold_frames = 15;   //!< CLOSER/FURTHER: a hand in front supports them once it has been in front this
+  double front_hold_ratio = 0.08;  //!< many frames, all within this many box widths of their median (held)
 
   template <class V>
   void visit(V& v) {
@@ -38,6 +40,8 @@ struct DecideParams {
     v("moving_ratio", moving_ratio, 0.0, 10.0, "evidence: median hand position shift (box widths) that is moving: no evidence");
     v("moving_frames", moving_frames, 1, 1000, "evidence: frames in each of the two medians compared for moving_ratio");
     v("direction_frames", direction_frames, 1, 1000, "evidence: FINE/UP/DOWN direction is the mean of this many last vectors");
+    v("front_hold_frames", front_hold_frames, 1, 1000, "evidence: a hand in front this many frames, held still, supports CLOSER/FURTHER");
+    v("front_hold_ratio", front_hold_ratio, 0.0, 10.0, "evidence: held still: those frames within this many box widths of their median");
   }
   void check(const ParamCheck& c) const {
     c.choice("rule", rule, {"paper", "evidence"});

@@ -29,6 +29,24 @@ EvidenceRule::Class EvidenceRule::classify(int kind, Vec2 v, double lambda4) {
   return kNone;
 }
 
+bool EvidenceRule::held_in_front(double box_width) const {
+  // Talking moves the hands about in front of the body, a new place every 0.25-0.85 s: a gesture is a hand
+  // that stays. Every one of the last front_hold_frames frames has a hand in front, none farther than
+  // front_hold_ratio box widths from their median (one far frame is a hand on its way, or a jump: not held).
+  const size_t k = static_cast<size_t>(params_.front_hold_frames);
+  if (history_.size() < k) return false;
+  std::vector<double> xs, ys;
+  for (size_t i = history_.size() - k; i < history_.size(); ++i) {
+    if (history_[i].kind != 2) return false;
+    xs.push_back(history_[i].vector.x);
+    ys.push_back(history_[i].vector.y);
+  }
+  const double mx = median(xs), my = median(ys);
+  for (size_t i = 0; i < xs.size(); ++i)
+    if (std::hypot(xs[i] - mx, ys[i] - my) > params_.front_hold_ratio * box_width) return false;
+  return true;
+}
+
 void EvidenceRule::reset() {
   evidence_.fill(0.0);
   current_ = kNone;
@@ -42,12 +60,13 @@ Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
   // over the moving_frames before. Medians, because a hand found on a noisy image jumps by half its size now and
   // then while the arm holds still (an outlier moves no median), and a drifting arm moves both.
   history_.push_back({kind, vector});
-  while (static_cast<int>(history_.size()) > 2 * params_.moving_frames) history_.pop_front();
+  while (static_cast<int>(history_.size()) > std::max(2 * params_.moving_frames, params_.front_hold_frames))
+    history_.pop_front();
   bool moving = false;
   if (c != kNone) {
     std::vector<double> ax, ay, bx, by;
     const int n = static_cast<int>(history_.size());
-    for (int i = 0; i < n; ++i) {
+    for (int i = std::max(0, n - 2 * params_.moving_frames); i < n; ++i) {
       if (history_[static_cast<size_t>(i)].kind != kind) continue;
       const Vec2& v = history_[static_cast<size_t>(i)].vector;
       const bool recent = i >= n - params_.moving_frames;
@@ -59,10 +78,15 @@ Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
     moving = ax.size() < k || bx.size() < k ||
              std::hypot(median(ax) - median(bx), median(ay) - median(by)) > params_.moving_ratio * box_width;
   }
+  const bool held = kind == 2 && !moving && held_in_front(box_width);
+
   for (int k = 1; k < kClasses; ++k) {
     // Motion matters for what is new: a frame of the held command's own class supports it even while the hand
-    // moves (a held arm that jitters, or sweeps within its command, is still held).
-    const bool support = k == c && (!moving || k == current_);
+    // moves (a held arm that jitters, or sweeps within its command, is still held). Not a hand in front: a new
+    // CLOSER/FURTHER needs the hand held (held_in_front), and a held one is let go when its hand moves on
+    // (talking: the next place is often on the same side of the body centre).
+    bool support = k == c && (!moving || k == current_);
+    if (k == c && (k == kCloser || k == kFurther)) support = k == current_ ? !moving : held;
     evidence_[k] = std::clamp(evidence_[k] + (support ? 1.0 : -params_.evidence_decay), 0.0,
                               static_cast<double>(params_.evidence_max));
     if (support) {

@@ -9,6 +9,10 @@
 // median over the moving_frames before is on its way somewhere: it is evidence for nothing (an arm going out or
 // coming down passes through the DOWN sector for ~0.3 s; lowered slowly, for over a second: only the drift over
 // several frames tells it from a held pose, and the medians ignore the jumps of a hand found on a noisy image).
+// A hand in front is held, not waved about: CLOSER/FURTHER gain evidence only once the hand has been in front
+// for front_hold_frames frames, all within front_hold_ratio box widths of their median (a person talking moves
+// their hands to a new place every 0.25-0.85 s: gesticulation is not a command), and a held CLOSER/FURTHER
+// loses it while its hand moves.
 // FINE's direction is the mean of the last direction_frames vectors of its class, UP/DOWN's the mean y.
 #pragma once
 
@@ -38,11 +42,13 @@ class EvidenceRule {
   Class current() const { return current_; }
 
  private:
+  bool held_in_front(double box_width) const;
+
   DecideParams params_;
   std::array<double, kClasses> evidence_{};
   Class current_ = kNone;
   struct Seen { int kind; Vec2 vector; };
-  std::deque<Seen> history_;  // the last 2 * moving_frames observations
+  std::deque<Seen> history_;  // the last max(2 * moving_frames, front_hold_frames) observations
   std::array<std::deque<Vec2>, kClasses> recent_;  // the last direction_frames supporting vectors per class
 };
 

@@ -1,6 +1,7 @@
 // EvidenceRule (decide.rule: evidence) on hand-made observation sequences with known reaction times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "config.hpp"
@@ -25,6 +26,7 @@ DecideParams evidence_params() {
   p.moving_ratio = 0.03;
   p.moving_frames = 1;
   p.direction_frames = 8;
+  p.front_hold_frames = 1;  // a hand in front counts like any other (the hold has tests of its own)
   return p;
 }
 
@@ -159,24 +161,74 @@ TEST(EvidenceRule, ThresholdsComeFromParams) {
   EXPECT_EQ(r.update(kFront, {0, -30}, kBox).mode, GestureMode::Closer);
 }
 
+// The first frame a decider fed o (a new observation every 40 ms) gives mode, 1-based; 0 if none of n does.
+int first_frame_of(const DecideParams& p, HandObservation o, GestureMode mode, int n) {
+  GestureDecider d(p);
+  for (int i = 0; i < n; ++i) {
+    o.utime = 1'000'000 + i * 40'000;
+    o.seq = i;
+    if (d.update(o).mode == mode) return i + 1;
+  }
+  return 0;
+}
+
 TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
   const DecideParams p;
   EXPECT_EQ(p.rule, "evidence");
-  // A steady pose is commanded on its 6th frame (0.2 s at 25 fps: two 2-frame medians to tell it still, then 3
-  // frames of evidence), the paper's Alg. 3 on its 31st.
-  GestureDecider d(p);
   HandObservation o;
-  o.kind = HandObservation::Kind::Front;
-  o.vector = {0, -30};
   o.user_box_width = kBox;
   o.track_id = 1;
-  std::vector<GestureMode> modes;
-  for (int i = 0; i < 6; ++i) {
-    o.utime = 1'000'000 + i * 40'000;
-    modes.push_back(d.update(o).mode);
+  // A steady arm out is commanded on its 6th frame (0.2 s at 25 fps: two 2-frame medians to tell it still, then
+  // 3 frames of evidence), the paper's Alg. 3 on its 31st.
+  o.kind = HandObservation::Kind::Out;
+  o.vector = {-100, 0};
+  EXPECT_EQ(first_frame_of(p, o, GestureMode::Fine, 40), 6);
+  // A steady hand in front on its 17th (0.64 s: 15 frames held, then 3 of evidence).
+  o.kind = HandObservation::Kind::Front;
+  o.vector = {0, -30};
+  EXPECT_EQ(first_frame_of(p, o, GestureMode::Closer, 40), 17);
+}
+
+TEST(EvidenceRule, HandsMovedAboutInFrontAsInTalkingAreNoCommand) {
+  // GIVEN the defaults and a hand in front, below the body centre (FURTHER's side), that moves to a new place
+  // every 14 frames (0.56 s), 0.2 box widths away, in 3 frames, and rests there
+  const DecideParams p;
+  EvidenceRule r(p);
+  const Vec2 places[] = {{10, 40}, {50, 50}, {20, 80}, {-20, 45}, {30, 60}};
+  Vec2 at = places[0];
+  int commanded = 0;
+  for (int k = 0; k < 20; ++k) {
+    const Vec2 to = places[k % 5];
+    for (int i = 1; i <= 14; ++i) {
+      const double f = std::min(1.0, i / 3.0);
+      commanded += r.update(kFront, {at.x + f * (to.x - at.x), at.y + f * (to.y - at.y)}, kBox).mode != GestureMode::Hover;
+    }
+    at = to;
   }
-  EXPECT_EQ(modes, (std::vector<GestureMode>{GestureMode::Hover, GestureMode::Hover, GestureMode::Hover, GestureMode::Hover,
-                                             GestureMode::Hover, GestureMode::Closer}));
+  // THEN never commanded
+  EXPECT_EQ(commanded, 0);
+  // AND the same hand that stays at its last place is FURTHER within 17 frames
+  GestureMode m = GestureMode::Hover;
+  for (int i = 0; i < 17 && m == GestureMode::Hover; ++i) m = r.update(kFront, at, kBox).mode;
+  EXPECT_EQ(m, GestureMode::Further);
+}
+
+TEST(EvidenceRule, AHeldHandInFrontThatMovesOnIsLetGo) {
+  // GIVEN CLOSER held long enough to cap its evidence (defaults: leave at 2 of 10)
+  const DecideParams p;
+  EvidenceRule r(p);
+  for (int i = 0; i < 30; ++i) r.update(kFront, {0, -30}, kBox);
+  ASSERT_EQ(r.current(), EvidenceRule::kCloser);
+  // WHEN the hand moves on, still above the body centre (CLOSER's side), 8 px a frame
+  int frames = 0;
+  for (; frames < 20 && r.current() == EvidenceRule::kCloser; ++frames) r.update(kFront, {8.0 * frames, -30}, kBox);
+  // THEN let go once the motion shows (two 2-frame medians apart) and 8 frames of evidence are lost
+  EXPECT_LE(frames, 11);
+  EXPECT_GE(frames, 8);
+  // while an arm out that sweeps within FINE is still FINE (fine piloting)
+  EvidenceRule out(p);
+  for (int i = 0; i < 30; ++i) out.update(kOut, {-100, 0}, kBox);
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(out.update(kOut, {-100.0 - 8 * i, 0}, kBox).mode, GestureMode::Fine) << i;
 }
 
 TEST(GestureDeciderEvidence, RuleIsChosenByConfigAndResetsWithTheBuffers) {
