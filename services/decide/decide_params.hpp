@@ -24,6 +24,8 @@ struct DecideParams {
   int direction_frames = 8;     //!< FINE/UP/DOWN direction: mean of the last this many supporting vectors
   int front_hold_frames = 15;   //!< CLOSER/FURTHER: a hand in front supports them once it has been in front this
   double front_hold_ratio = 0.08;  //!< many frames, all within this many box widths of their median (held)
+  double front_dead_zone = 0.05;   //!< a hand in front this close to the body centre's height (box widths):
+                                   //!< neither CLOSER nor FURTHER
 
   template <class V>
   void visit(V& v) {
@@ -42,6 +44,7 @@ struct DecideParams {
     v("direction_frames", direction_frames, 1, 1000, "evidence: FINE/UP/DOWN direction is the mean of this many last vectors");
     v("front_hold_frames", front_hold_frames, 1, 1000, "evidence: a hand in front this many frames, held still, supports CLOSER/FURTHER");
     v("front_hold_ratio", front_hold_ratio, 0.0, 10.0, "evidence: held still: those frames within this many box widths of their median");
+    v("front_dead_zone", front_dead_zone, 0.0, 1.0, "evidence: a hand in front this close to the body centre's height (box widths) is neither CLOSER nor FURTHER");
   }
   void check(const ParamCheck& c) const {
     c.choice("rule", rule, {"paper", "evidence"});

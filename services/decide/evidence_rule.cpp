@@ -16,15 +16,15 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-EvidenceRule::Class EvidenceRule::classify(int kind, Vec2 v, double lambda4) {
+EvidenceRule::Class EvidenceRule::classify(int kind, Vec2 v, double lambda4, double front_dead_band) {
   if (v.is_zero()) return kNone;
   if (kind == 1) {
     if (std::fabs(v.y) > std::fabs(lambda4 * v.x)) return v.y < 0.0 ? kUp : kDown;  // Alg. 3's snap, one vector
     return v.x < 0.0 ? kFineLeft : kFineRight;
   }
   if (kind == 2) {
-    if (v.y < 0.0) return kCloser;
-    if (v.y > 0.0) return kFurther;
+    if (v.y < -front_dead_band) return kCloser;
+    if (v.y > front_dead_band) return kFurther;
   }
   return kNone;
 }
@@ -55,7 +55,7 @@ void EvidenceRule::reset() {
 }
 
 Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
-  const Class c = classify(kind, vector, params_.lambda4);
+  const Class c = classify(kind, vector, params_.lambda4, params_.front_dead_zone * box_width);
   // Moving: the median position of this kind of hand over the last moving_frames frames is far from its median
   // over the moving_frames before. Medians, because a hand found on a noisy image jumps by half its size now and
   // then while the arm holds still (an outlier moves no median), and a drifting arm moves both.

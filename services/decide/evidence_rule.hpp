@@ -12,7 +12,8 @@
 // A hand in front is held, not waved about: CLOSER/FURTHER gain evidence only once the hand has been in front
 // for front_hold_frames frames, all within front_hold_ratio box widths of their median (a person talking moves
 // their hands to a new place every 0.25-0.85 s: gesticulation is not a command), and a held CLOSER/FURTHER
-// loses it while its hand moves.
+// loses it while its hand moves. A hand in front within front_dead_zone box widths of the body centre's height
+// is neither (a hand on its way up or down, or read there by the hands stage, asks for nothing).
 // FINE's direction is the mean of the last direction_frames vectors of its class, UP/DOWN's the mean y.
 #pragma once
 
@@ -36,8 +37,9 @@ class EvidenceRule {
   Decision update(int kind, Vec2 vector, double box_width);
   void reset();
 
-  // This frame's class from one observation (exposed for tests).
-  static Class classify(int kind, Vec2 v, double lambda4);
+  // This frame's class from one observation (exposed for tests); a hand in front within front_dead_band px of
+  // the body centre's height is neither higher nor lower.
+  static Class classify(int kind, Vec2 v, double lambda4, double front_dead_band = 0.0);
   double evidence(Class c) const { return evidence_[c]; }
   Class current() const { return current_; }
 

@@ -189,6 +189,21 @@ TEST(GestureDeciderEvidence, TheDefaultIsTheEvidenceRule) {
   EXPECT_EQ(first_frame_of(p, o, GestureMode::Closer, 40), 17);
 }
 
+TEST(EvidenceRule, AHandInFrontAtTheBodyCentresHeightIsNeitherHigherNorLower) {
+  // classify: within the dead band (px) of the body centre's height, no class; beyond it, the paper's sign
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, -9}, 0.5, 10.0), EvidenceRule::kNone);
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, 9}, 0.5, 10.0), EvidenceRule::kNone);
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, -11}, 0.5, 10.0), EvidenceRule::kCloser);
+  EXPECT_EQ(EvidenceRule::classify(kFront, {5, 11}, 0.5, 10.0), EvidenceRule::kFurther);
+  // the defaults (0.05 box widths): a hand held 0.03 box widths below the body centre is no command, 0.1 is
+  const DecideParams p;
+  EvidenceRule r(p);
+  for (int i = 0; i < 40; ++i) EXPECT_EQ(r.update(kFront, {20, 0.03 * kBox}, kBox).mode, GestureMode::Hover) << i;
+  GestureMode m = GestureMode::Hover;
+  for (int i = 0; i < 40 && m == GestureMode::Hover; ++i) m = r.update(kFront, {20, 0.1 * kBox}, kBox).mode;
+  EXPECT_EQ(m, GestureMode::Further);
+}
+
 TEST(EvidenceRule, HandsMovedAboutInFrontAsInTalkingAreNoCommand) {
   // GIVEN the defaults and a hand in front, below the body centre (FURTHER's side), that moves to a new place
   // every 14 frames (0.56 s), 0.2 box widths away, in 3 frames, and rests there
