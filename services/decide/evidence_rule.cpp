@@ -78,15 +78,16 @@ Decision EvidenceRule::update(int kind, Vec2 vector, double box_width) {
     moving = ax.size() < k || bx.size() < k ||
              std::hypot(median(ax) - median(bx), median(ay) - median(by)) > params_.moving_ratio * box_width;
   }
-  const bool held = kind == 2 && !moving && held_in_front(box_width);
+  // Whether this frame supports its own class. Motion matters for what is new: a frame of the held command's
+  // own class supports it even while the hand moves (a held arm that jitters, or sweeps within its command, is
+  // still held). Not a hand in front: a new CLOSER/FURTHER needs the hand held (held_in_front), and a held one
+  // is let go when its hand moves on (talking: the next place is often on the same side of the body centre).
+  bool supported = false;
+  if (c == kCloser || c == kFurther) supported = !moving && (c == current_ || held_in_front(box_width));
+  else if (c != kNone) supported = !moving || c == current_;
 
   for (int k = 1; k < kClasses; ++k) {
-    // Motion matters for what is new: a frame of the held command's own class supports it even while the hand
-    // moves (a held arm that jitters, or sweeps within its command, is still held). Not a hand in front: a new
-    // CLOSER/FURTHER needs the hand held (held_in_front), and a held one is let go when its hand moves on
-    // (talking: the next place is often on the same side of the body centre).
-    bool support = k == c && (!moving || k == current_);
-    if (k == c && (k == kCloser || k == kFurther)) support = k == current_ ? !moving : held;
+    const bool support = k == c && supported;
     evidence_[k] = std::clamp(evidence_[k] + (support ? 1.0 : -params_.evidence_decay), 0.0,
                               static_cast<double>(params_.evidence_max));
     if (support) {
