@@ -40,6 +40,7 @@ struct Torso {
   cv::Point2f face;
   double face_radius = 0;  //!< pixels
   bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
+  bool low_judged = false; //!< the hips far enough above the frame's bottom edge for a hand below p_bc
 };
 
 Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Size>& frame) {
@@ -66,8 +67,11 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::o
   t.hips_seen = seen(lm, L::kLeftHip, p.hips_min_visibility) && seen(lm, L::kRightHip, p.hips_min_visibility);
   // Hips on the frame's bottom edge (the drone high and close) are the model's guess of a body cut off there, and
   // a hanging arm seen from above ends between them.
-  if (frame && std::max(t.left_hip.y, t.right_hip.y) > frame->height - p.hips_min_frame_margin * torso_height)
-    t.hips_seen = false;
+  const double lowest_hip = std::max(t.left_hip.y, t.right_hip.y);
+  if (frame && lowest_hip > frame->height - p.hips_min_frame_margin * torso_height) t.hips_seen = false;
+  // A body the edge cuts just below the hips has them placed well inside the frame, visible: p_bc then sits
+  // higher than the person's, which can make a hand in front read lower, never higher.
+  t.low_judged = t.hips_seen && !(frame && lowest_hip > frame->height - p.low_hips_min_frame_margin * torso_height);
   return t;
 }
 
@@ -108,7 +112,8 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   const bool raised = above_shoulders && a.straightness >= p.out_raised_min_straightness;
   if (raised || (straight && (a.from_down_deg >= p.out_min_from_down_deg || out_of_box)))
     a.pose = ArmPose::Out;  // stretched out: up, sideways, or down and away from the body
-  else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && !hanging)
+  else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && !hanging &&
+           (t.low_judged || a.hand.y <= t.body_centre.y))
     a.pose = a.hand.y > t.body_centre.y ? ArmPose::FrontLow : ArmPose::FrontHigh;  // as the vector will say
   else if (hanging || below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
     a.pose = ArmPose::Rest;  // hanging, or the hand down by the hips

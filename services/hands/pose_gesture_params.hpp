@@ -41,6 +41,11 @@ struct PoseGestureParams {
                                       //!< hips below the frame on 6.8 % (0.5: 1.6 %)
   double hips_min_frame_margin = 0.1; //!< ... and both hips at least this many torso heights above the frame's bottom
                                       //!< edge (0: on it is enough)
+  double low_hips_min_frame_margin = 0.6; //!< FRONT_LOW is judged only with both hips at least this many torso
+                                          //!< heights above the frame's bottom edge: a body the edge cuts at the
+                                          //!< hips has them placed up to ~0.5 torso heights inside the frame
+                                          //!< (e2e: 0.43 for hips 7 px below it, at visibility 0.9), which
+                                          //!< raises p_bc, so a hand in front can only be misread as lower
   double span_margin = 0.1;           //!< the torso's span in x is its shoulders' and hips' extent grown by this many
                                       //!< torso heights each side
   double face_radius = 0.4;           //!< a wrist within this many shoulder widths of the face's centre (nose, eyes,
@@ -62,6 +67,7 @@ struct PoseGestureParams {
     v("front_hips_margin_min_bend_deg", front_hips_margin_min_bend_deg, 0.0, 180.0, "FRONT: the hips' margin applies to an arm bent at the elbow at least this much");
     v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");
     v("hips_min_frame_margin", hips_min_frame_margin, 0.0, 2.0, "FRONT is judged only with both hips at least this many torso heights above the frame's bottom edge");
+    v("low_hips_min_frame_margin", low_hips_min_frame_margin, 0.0, 2.0, "FRONT_LOW is judged only with both hips at least this many torso heights above the frame's bottom edge");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");
     v("face_radius", face_radius, 0.0, 2.0, "a wrist within this many shoulder widths of the face centre is at the face (no command)");
     v("hand_beyond_wrist", hand_beyond_wrist, 0.0, 1.5, "hand point: this share of the way from the wrist to the knuckles");
