@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace gpilot {
 
@@ -41,9 +42,12 @@ struct Torso {
   double face_radius = 0;  //!< pixels
   bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
   bool low_judged = false; //!< the hips far enough above the frame's bottom edge for a hand below p_bc
+  double cut_below_y = std::numeric_limits<double>::infinity();  //!< an arm's hand below the shoulders and
+                                                                 //!< below this is not read (the body cut)
 };
 
-Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Size>& frame) {
+Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::optional<cv::Rect2f>& user_box,
+               const std::optional<cv::Size>& frame) {
   Torso t;
   t.left_shoulder = at(lm, L::kLeftShoulder);
   t.right_shoulder = at(lm, L::kRightShoulder);
@@ -72,6 +76,9 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::o
   // A body the edge cuts just below the hips has them placed well inside the frame, visible: p_bc then sits
   // higher than the person's, which can make a hand in front read lower, never higher.
   t.low_judged = t.hips_seen && !(frame && lowest_hip > frame->height - p.low_hips_min_frame_margin * torso_height);
+  // The frame's bottom edge cutting the body above the hips (hips not seen) may cut a hanging arm too: the
+  // model then places the wrist out of view inside the frame, near the edge, where an arm out and down has it.
+  if (frame && user_box && !t.hips_seen) t.cut_below_y = frame->height - p.cut_hand_margin * user_box->width;
   return t;
 }
 
@@ -110,7 +117,9 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   a.hand_beside_box = user_box && !user_box->contains(a.hand);
   const bool out_of_box = a.hand_beside_box && a.from_down_deg >= p.out_beside_box_min_from_down_deg;
   const bool raised = above_shoulders && a.straightness >= p.out_raised_min_straightness;
-  if (raised || (straight && (a.from_down_deg >= p.out_min_from_down_deg || out_of_box)))
+  if (!above_shoulders && a.hand.y > t.cut_below_y)
+    a.pose = ArmPose::Unseen;  // the body cut above the hips and this hand at the edge: where it ends is unseen
+  else if (raised || (straight && (a.from_down_deg >= p.out_min_from_down_deg || out_of_box)))
     a.pose = ArmPose::Out;  // stretched out: up, sideways, or down and away from the body
   else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && !hanging &&
            (t.low_judged || a.hand.y <= t.body_centre.y))
@@ -159,7 +168,7 @@ PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& 
       g.rule = "a landmark is not finite";
       return g;
     }
-  const Torso t = torso_of(lm, p, frame);
+  const Torso t = torso_of(lm, p, user_box, frame);
   g.shoulder_centre = t.shoulder_mid;
   g.body_centre = t.body_centre;
   // The shoulders are what every arm is read from. The hips may be below the frame (the drone high and close):

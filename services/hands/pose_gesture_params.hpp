@@ -46,6 +46,11 @@ struct PoseGestureParams {
                                           //!< hips has them placed up to ~0.5 torso heights inside the frame
                                           //!< (e2e: 0.43 for hips 7 px below it, at visibility 0.9), which
                                           //!< raises p_bc, so a hand in front can only be misread as lower
+  double cut_hand_margin = 0.25;      //!< the hips not seen (the body cut above them): an arm whose hand lies below
+                                      //!< the shoulders and within this many user-box widths (0.25: a hand square)
+                                      //!< of the frame's bottom edge is not read (e2e: a hanging hand out of view
+                                      //!< placed 0-1.6 hand squares inside the frame, read as out and down; true
+                                      //!< arms out there 2.1-2.6)
   double span_margin = 0.1;           //!< the torso's span in x is its shoulders' and hips' extent grown by this many
                                       //!< torso heights each side
   double face_radius = 0.4;           //!< a wrist within this many shoulder widths of the face's centre (nose, eyes,
@@ -68,6 +73,7 @@ struct PoseGestureParams {
     v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");
     v("hips_min_frame_margin", hips_min_frame_margin, 0.0, 2.0, "FRONT is judged only with both hips at least this many torso heights above the frame's bottom edge");
     v("low_hips_min_frame_margin", low_hips_min_frame_margin, 0.0, 2.0, "FRONT_LOW is judged only with both hips at least this many torso heights above the frame's bottom edge");
+    v("cut_hand_margin", cut_hand_margin, 0.0, 2.0, "hips not seen: an arm whose hand is below the shoulders and within this many box widths of the frame's bottom edge is not read");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");
     v("face_radius", face_radius, 0.0, 2.0, "a wrist within this many shoulder widths of the face centre is at the face (no command)");
     v("hand_beyond_wrist", hand_beyond_wrist, 0.0, 1.5, "hand point: this share of the way from the wrist to the knuckles");

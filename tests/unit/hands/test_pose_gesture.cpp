@@ -199,6 +199,27 @@ TEST(PoseGesture, HipsNearTheFramesBottomEdgeLeaveAHandHighButNotLow) {
   EXPECT_EQ(read_pose_gesture(low, off, std::nullopt, cv::Size(640, 259)).right.pose, ArmPose::FrontLow);
 }
 
+TEST(PoseGesture, AHandAtTheBottomEdgeOfABodyCutAboveTheHipsIsNotRead) {
+  // A nuisances e2e run, the drone 2.5 m up and close after UP, JPEG at quality 25: the hips below the frame
+  // (visibility 0.07), the resting hand 45 px below it, and BlazePose placed that wrist inside the frame 17 px
+  // above its bottom edge, the arm straight 50 deg from down: DOWN flown 0.34 m while the user rested. A hand
+  // below the shoulders within cut_hand_margin (0.25) box widths of the bottom edge of a body cut above the hips
+  // is not read; the hand higher, the same arm is OUT.
+  const cv::Point2f s(280, 100), d(static_cast<float>(-std::sin(50 * M_PI / 180)), static_cast<float>(std::cos(50 * M_PI / 180)));
+  PoseLandmarks lm = standing({{365, 150}, {368, 200}}, Arm{s + d * 55.0f, s + d * 110.0f});  // hand at y 174.2
+  const cv::Rect2f box(270, 40, 100, 300);  // 0.25 box widths: 25 px
+  const PoseGestureParams p;
+  for (const int hip : {L::kLeftHip, L::kRightHip}) lm[hip].visibility = 0.07f;
+  const PoseGesture cut = read_pose_gesture(lm, p, box, cv::Size(640, 195));
+  EXPECT_EQ(cut.kind, HandKind::None) << describe_pose_gesture(cut);
+  EXPECT_EQ(cut.right.pose, ArmPose::Unseen);
+  EXPECT_EQ(read_pose_gesture(lm, p, box, cv::Size(640, 205)).kind, HandKind::Out);
+  EXPECT_EQ(read_pose_gesture(lm, p, std::nullopt, cv::Size(640, 195)).kind, HandKind::Out);  // no box: not applied
+  // An arm raised above the shoulders is read wherever the frame's edge is.
+  const PoseLandmarks up = standing({{365, 150}, {368, 200}}, Arm{{262, 50}, {260, 0}});
+  EXPECT_EQ(read_pose_gesture(up, p, box, cv::Size(640, 195)).kind, HandKind::Out);
+}
+
 TEST(PoseGesture, ABentArmIsNotOutAndTheStraightnessLimitDecides) {
   // The right arm out with the elbow dropped: straightness 100 / (2 x 70.71) = 0.71 (the limit: 0.75).
   const Arm bent{{230, 150}, {180, 100}};
