@@ -129,6 +129,7 @@ ScenarioState mix(const ScenarioState& a, const ScenarioState& b, double w) {
   s.right_arm = mix(a.right_arm, b.right_arm, w);
   s.left_arm = mix(a.left_arm, b.left_arm, w);
   s.step_m = mix(a.step_m, b.step_m, w);
+  s.turn_deg = mix(a.turn_deg, b.turn_deg, w);
   s.light = mix(a.light, b.light, w);
   s.shake_deg = mix(a.shake_deg, b.shake_deg, w);
   s.noise_sigma = mix(a.noise_sigma, b.noise_sigma, w);
@@ -337,7 +338,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
   for (size_t i = 0; i < keys.size(); ++i) {
     const std::string ctx = "keyframes[" + std::to_string(i) + "]";
     const YAML::Node k = keys[i];
-    r.only(k, ctx, {"t", "transition_s", "gesture", "right_arm", "left_arm", "step_m", "light", "shake_deg",
+    r.only(k, ctx, {"t", "transition_s", "gesture", "right_arm", "left_arm", "step_m", "turn_deg", "light", "shake_deg",
                     "noise_sigma", "blur_px", "jpeg_quality", "distractor"});
     Keyframe kf;
     if (!k["t"]) r.fail(ctx + ".t", "missing");
@@ -352,6 +353,7 @@ Scenario Scenario::parse(const std::string& yaml, const std::string& origin) {
     if (k["right_arm"]) state.right_arm = read_arm(r, k["right_arm"], ctx + ".right_arm", state.right_arm);
     if (k["left_arm"]) state.left_arm = read_arm(r, k["left_arm"], ctx + ".left_arm", state.left_arm);
     r.opt(k, "step_m", ctx, state.step_m, -20, 20);
+    r.opt(k, "turn_deg", ctx, state.turn_deg, -360, 360);
     r.opt(k, "light", ctx, state.light, 0.05, 4.0);
     r.opt(k, "shake_deg", ctx, state.shake_deg, 0, 10);
     r.opt(k, "noise_sigma", ctx, state.noise_sigma, 0, 64);

@@ -46,7 +46,8 @@
 // a key it does not give keeps its previous value. Keys: gesture (REST OUT UP DOWN CLOSER FURTHER),
 // right_arm / left_arm (a preset name: rest out up down front_high front_low; or a map with `preset`,
 // `angle_deg`, `extension`, `forward_deg`; or {hand: [out, up, forward]} metres from the shoulder),
-// step_m (sideways step to the person's left, m), light (brightness gain), shake_deg (camera shake
+// step_m (sideways step to the person's left, m), turn_deg (the person turned from where they face, degrees,
+// positive to their left: 180 shows the camera their back), light (brightness gain), shake_deg (camera shake
 // amplitude), noise_sigma (sensor noise, grey levels), blur_px (horizontal motion blur length),
 // jpeg_quality (0 = off), distractor (true/false). Numbers blend smoothly; gesture, jpeg_quality and
 // distractor switch half-way through the transition.
@@ -88,6 +89,7 @@ struct ScenarioState {
   ArmPose right_arm, left_arm;  //!< the person's own right and left
   int gesture = 0;              //!< ground_truth_t::GESTURE_*
   double step_m = 0.0;          //!< sideways offset of the person, to their left, metres
+  double turn_deg = 0.0;        //!< the person turned from where they face, degrees, positive to their left
   double light = 1.0;           //!< brightness gain applied to the whole frame
   double shake_deg = 0.0;       //!< camera shake amplitude (yaw and pitch), degrees
   double noise_sigma = 0.0;     //!< Gaussian sensor noise, grey levels

@@ -36,6 +36,10 @@ const cv::RotatedRect kFaceOval(cv::Point2f(85, 110), cv::Size2f(92, 124), 0);
 constexpr double kHairGain = 0.3;  // the portrait's fair hair is skin-coloured; darkened, it is not
 
 const cv::Scalar kTurtleneck(44, 40, 38);
+// The back of the head, seen when the person turns away: hair over the portrait's head outline (its size and
+// centre in face boxes: kHeadOutline against the face oval).
+const cv::Scalar kHair(35, 45, 60);
+constexpr double kHeadHalfWidth = 0.75, kHeadHalfHeight = 0.82, kHeadAboveFaceCentre = 0.25;
 const cv::Scalar kShoes(30, 30, 32);
 
 cv::Point fixed(const cv::Point2d& p) {
@@ -407,7 +411,21 @@ void SyntheticWorld::blend_skin(cv::Mat& img, const cv::Mat& alpha, const cv::Re
   }
 }
 
+bool SyntheticWorld::faces_away(const View& v, double step_x) const {
+  const cv::Point3d face(step_x, dims_.face_top - 0.5 * dims_.face_box, 0.0);
+  return (v.c - v.world(face)).dot(v.front) <= 0.0;  // the camera behind the face's plane
+}
+
 void SyntheticWorld::draw_head(cv::Mat& img, cv::Mat* labels, const View& v, double step_x) const {
+  // Turned away: the back of the head, hair over a head-sized ellipse.
+  if (faces_away(v, step_x)) {
+    const cv::Point3d head_centre(step_x, dims_.face_top - (0.5 - kHeadAboveFaceCentre) * dims_.face_box, 0.0);
+    const cv::Point2d c = v.project(head_centre);
+    const cv::Point2d top = v.project(head_centre + cv::Point3d(0, 1, 0));
+    const double half_w = v.px(kHeadHalfWidth * dims_.face_box, head_centre), half_h = v.px(kHeadHalfHeight * dims_.face_box, head_centre);
+    paint(img, labels, PartLabel::Head, kHair, [&](cv::Mat& m, const cv::Scalar& col, int line) { ellipse(m, c, top - c, half_h, half_w, col, line); });
+    return;
+  }
   const cv::Mat& base = head_levels_.front();
   const double mpp = dims_.face_box / head_face_px_.width;  // metres per portrait pixel
   const double face_cx = head_face_px_.x + 0.5 * head_face_px_.width;
@@ -576,7 +594,7 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
     view.front = {std::cos(yaw), std::sin(yaw), 0.0};
     view.origin = {north, east, 0.0};
   };
-  place(v, person.north, person.east, py);
+  place(v, person.north, person.east, py - s.turn_deg * kDeg);  // turned to their left: anticlockwise from above
 
   SyntheticFrame out;
   out.bgr.create(params_.height, params_.width, CV_8UC3);
@@ -656,6 +674,13 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   double fx0 = 1e9, fy0 = 1e9, fx1 = -1e9, fy1 = -1e9;
   for (const auto& p : face) fx0 = std::min(fx0, p.x), fy0 = std::min(fy0, p.y), fx1 = std::max(fx1, p.x), fy1 = std::max(fy1, p.y);
   t.face_box = cv::Rect2f(float(fx0), float(fy0), float(fx1 - fx0), float(fy1 - fy0));
+  if (s.turn_deg != 0.0) {
+    // Turned, the face's plane is seen at a slant (edge-on at 90 deg): the box is the face's size where it is.
+    const cv::Point3d centre(pose.step_x, face_cy, 0.02);
+    const cv::Point2d c = v.project(centre);
+    const double side = v.px(kHaarBoxScale * dims_.face_box, centre);
+    t.face_box = cv::Rect2f(float(c.x - 0.5 * side), float(c.y - 0.5 * side), float(side), float(side));
+  }
   t.user_box = cv::Rect2f(body_from_face(cv::Rect2d(t.face_box), BodyProportions{}));
   const cv::Point2d rh = v.project(pose.right.hand), lh = v.project(pose.left.hand);
   t.right_hand = cv::Point2f(float(rh.x), float(rh.y));
@@ -679,6 +704,15 @@ SyntheticFrame SyntheticWorld::render(double t_s, int64_t frame_index, const std
   t.expected_vector = e.vector;
   t.expected_mode = e.mode;
   t.expected_direction = e.direction;
+  if (faces_away(v, pose.step_x)) {
+    // The back to the camera: no face for a cascade, and no gesture (the paper's user faces the drone: an arm
+    // out with the back turned shows someone else the way).
+    t.face_box = cv::Rect2f();
+    t.expected_kind = 0;
+    t.expected_vector = cv::Point2f();
+    t.expected_mode = 0;
+    t.expected_direction = cv::Point3f();
+  }
   return out;
 }
 

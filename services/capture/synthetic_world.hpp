@@ -106,6 +106,7 @@ class SyntheticWorld {
   void draw_wall(cv::Mat& img, cv::Mat* labels, const View& v) const;
   void draw_person(cv::Mat& img, cv::Mat* labels, const View& v, const FigurePose& pose, const ScenarioPerson& look) const;
   void draw_head(cv::Mat& img, cv::Mat* labels, const View& v, double step_x) const;
+  bool faces_away(const View& v, double step_x) const;  //!< the person shows the camera their back
   void blend_skin(cv::Mat& img, const cv::Mat& alpha, const cv::Rect& roi) const;
   void apply_nuisances(cv::Mat& img, const ScenarioState& s, int64_t frame_index) const;
 

@@ -44,6 +44,8 @@ cv::Mat tile(const SyntheticFrame& f, double t, int h) {
   cv::Rect crop(cv::Point(static_cast<int>(u.x - 1.7f * u.width), static_cast<int>(u.y - 0.3f * u.height)),
                 cv::Point(static_cast<int>(u.x + 2.7f * u.width), static_cast<int>(u.y + 1.08f * u.height)));
   crop &= cv::Rect(0, 0, img.cols, img.rows);
+  // The person out of view (walked out of the frame): the whole frame.
+  if (crop.width < u.width || crop.height < 0.5f * u.height) crop = cv::Rect(0, 0, img.cols, img.rows);
   cv::Mat out;
   cv::resize(img(crop), out, cv::Size(static_cast<int>(std::lround(crop.width * double(h) / crop.height)), h), 0, 0, cv::INTER_AREA);
   char line[160];

@@ -35,7 +35,8 @@ TEST(Scenario, BareNameLoadsTheShippedTour) {
 }
 
 TEST(Scenario, EveryShippedScenarioLoads) {
-  for (const char* name : {"tour", "fine-piloting", "closer-further", "idle", "nuisances", "warm-wall", "dark-skin"}) {
+  for (const char* name : {"tour", "fine-piloting", "closer-further", "idle", "nuisances", "warm-wall", "dark-skin",
+                           "bystander", "far", "far-no-face", "talking", "orange-shirt", "walk-out", "turn-around"}) {
     SCOPED_TRACE(name);
     const Scenario s = Scenario::load(name);
     EXPECT_GT(s.duration_s(), 10.0);
@@ -56,12 +57,13 @@ TEST(Scenario, BlendsSmoothlyAndHoldsEachPose) {
   const Scenario s = Scenario::parse(
       "keyframes:\n"
       "  - {t: 0, gesture: REST, right_arm: rest}\n"
-      "  - {t: 2, gesture: OUT, right_arm: out, transition_s: 1.0, light: 0.5}\n",
+      "  - {t: 2, gesture: OUT, right_arm: out, transition_s: 1.0, light: 0.5, turn_deg: 180}\n",
       "x.yaml");
   // THEN before the move the pose is rest, half-way it is half-way (smoothstep(0.5) = 0.5), after it is out
   EXPECT_DOUBLE_EQ(s.state_at(1.9).right_arm.angle_deg, 0.0);
   EXPECT_NEAR(s.state_at(2.5).right_arm.angle_deg, 45.0, 1e-9);
   EXPECT_NEAR(s.state_at(2.5).light, 0.75, 1e-9);
+  EXPECT_NEAR(s.state_at(2.5).turn_deg, 90.0, 1e-9);  // turning round, side-on half-way
   EXPECT_DOUBLE_EQ(s.state_at(3.0).right_arm.angle_deg, 90.0);
   EXPECT_DOUBLE_EQ(s.state_at(100.0).right_arm.angle_deg, 90.0);
   // the gesture label switches half-way through the transition
@@ -110,6 +112,7 @@ TEST(Scenario, BadFilesNameTheKey) {
   EXPECT_NE(error_of("keyframes: [{t: 1}, {t: 1}]").find("keyframes[1].t"), std::string::npos);
   EXPECT_NE(error_of("keyframes: [{t: 0, lihgt: 2}]").find("keyframes[0].lihgt: unknown key"), std::string::npos);
   EXPECT_NE(error_of("keyframes: [{t: 0, light: -1}]").find("keyframes[0].light"), std::string::npos);
+  EXPECT_NE(error_of("keyframes: [{t: 0, turn_deg: 400}]").find("keyframes[0].turn_deg"), std::string::npos);
   EXPECT_NE(error_of("camera: {north: x}\nkeyframes: [{t: 0}]").find("camera.north: not a number"), std::string::npos);
   EXPECT_NE(error_of("keyframes: [{t: 0}").find("test.yaml: not valid YAML"), std::string::npos);
   EXPECT_NE(error_of("keyframes: [{t: 0, right_arm: {hand: [1, 2]}}]").find("right_arm.hand"), std::string::npos);

@@ -152,6 +152,35 @@ TEST(SyntheticWorld, ThePersonTurnsToFaceTheDroneUnlessTheirFacingIsFixed) {
   EXPECT_NEAR(turning.face_box.x + turning.face_box.width / 2, 320.0, 1.0);  // still centred: the drone looks at them
 }
 
+TEST(SyntheticWorld, APersonTurnedAwayShowsTheBackOfTheHeadAndMakesNoGesture) {
+  // GIVEN the same person, an arm out, facing the drone and turned 180 deg (turn_deg) with their back to it
+  const auto world = [](double turn) {
+    return SyntheticWorld(SyntheticParams{}, Scenario::parse("keyframes: [{t: 0, gesture: REST, right_arm: out, turn_deg: " +
+                                                                 std::to_string(turn) + "}]\n", "x"), 1);
+  };
+  cv::Mat facing_labels, away_labels;
+  const SyntheticFrame facing = world(0).render(0.5, 0, std::nullopt, &facing_labels);
+  const SyntheticFrame away = world(180).render(0.5, 0, std::nullopt, &away_labels);
+  // THEN facing, the arm out is OUT; turned away there is no face for a cascade and no gesture, the body box stays
+  EXPECT_EQ(facing.truth.expected_kind, hand_obs_t::KIND_OUT);
+  EXPECT_GT(facing.truth.face_box.area(), 0.0f);
+  EXPECT_EQ(away.truth.face_box.area(), 0.0f);
+  EXPECT_EQ(away.truth.expected_kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(away.truth.expected_mode, gesture_cmd_t::MODE_HOVER);
+  EXPECT_NEAR(away.truth.user_box.x, facing.truth.user_box.x, 1.0);
+  EXPECT_NEAR(away.truth.user_box.width, facing.truth.user_box.width, 0.02 * facing.truth.user_box.width);
+  // AND the head is hair, no face: dark where the facing head is the portrait's skin
+  const cv::Mat head_away = away_labels == static_cast<uchar>(PartLabel::Head);
+  const cv::Mat head_facing = facing_labels == static_cast<uchar>(PartLabel::Head);
+  ASSERT_GT(cv::countNonZero(head_away), 200);
+  const cv::Scalar hair = cv::mean(away.bgr, head_away), face = cv::mean(facing.bgr, head_facing);
+  EXPECT_LT(hair[2], 80.0);
+  EXPECT_GT(face[2], hair[2] + 40.0);
+  // AND the arm out shows on the other side of the image: the person's right is the image's right
+  EXPECT_LT(facing.truth.right_hand.x, facing.truth.shoulder_centre.x);
+  EXPECT_GT(away.truth.right_hand.x, away.truth.shoulder_centre.x);
+}
+
 TEST(SyntheticWorld, APersonBehindTheCameraIsNotDrawn) {
   const SyntheticWorld& w = tour_world();
   // GIVEN the drone turned away from the person (yaw 180 deg), and one that flew past them
