@@ -41,7 +41,8 @@ struct Torso {
   cv::Point2f face;
   double face_radius = 0;  //!< pixels
   bool hips_seen = false;  //!< the hips visible: the hip line and p_bc are measured, not only predicted
-  bool low_judged = false; //!< the hips far enough above the frame's bottom edge for a hand below p_bc
+  double low_from_y = 0;   //!< a hand in front below p_bc is judged only below this (p_bc, or lower where the
+                           //!< hips may be placed too high)
   double cut_below_y = std::numeric_limits<double>::infinity();  //!< an arm's hand below the shoulders and
                                                                  //!< below this is not read (the body cut)
 };
@@ -73,9 +74,10 @@ Torso torso_of(const PoseLandmarks& lm, const PoseGestureParams& p, const std::o
   // a hanging arm seen from above ends between them.
   const double lowest_hip = std::max(t.left_hip.y, t.right_hip.y);
   if (frame && lowest_hip > frame->height - p.hips_min_frame_margin * torso_height) t.hips_seen = false;
-  // A body the edge cuts just below the hips has them placed well inside the frame, visible: p_bc then sits
+  // A body the edge cuts just below the hips has them placed inside the frame, visible, too high: p_bc then sits
   // higher than the person's, which can make a hand in front read lower, never higher.
-  t.low_judged = t.hips_seen && !(frame && lowest_hip > frame->height - p.low_hips_min_frame_margin * torso_height);
+  const bool hips_doubtful = frame && lowest_hip > frame->height - p.low_hips_min_frame_margin * torso_height;
+  t.low_from_y = t.body_centre.y + (hips_doubtful ? 0.5 * p.low_hips_doubt * torso_height : 0.0);
   // The frame's bottom edge cutting the body above the hips (hips not seen) may cut a hanging arm too: the
   // model then places the wrist out of view inside the frame, near the edge, where an arm out and down has it.
   if (frame && user_box && !t.hips_seen) t.cut_below_y = frame->height - p.cut_hand_margin * user_box->width;
@@ -122,7 +124,7 @@ ArmReading read_arm(const PoseLandmarks& lm, const Torso& t, const PoseGesturePa
   else if (raised || (straight && (a.from_down_deg >= p.out_min_from_down_deg || out_of_box)))
     a.pose = ArmPose::Out;  // stretched out: up, sideways, or down and away from the body
   else if (t.hips_seen && in_span && !above_shoulders && !below_hips && !at_face && !hanging &&
-           (t.low_judged || a.hand.y <= t.body_centre.y))
+           (a.hand.y <= t.body_centre.y || a.hand.y > t.low_from_y))
     a.pose = a.hand.y > t.body_centre.y ? ArmPose::FrontLow : ArmPose::FrontHigh;  // as the vector will say
   else if (hanging || below_hips || (below_centre && a.from_down_deg <= p.rest_max_from_down_deg))
     a.pose = ArmPose::Rest;  // hanging, or the hand down by the hips

@@ -41,11 +41,12 @@ struct PoseGestureParams {
                                       //!< hips below the frame on 6.8 % (0.5: 1.6 %)
   double hips_min_frame_margin = 0.1; //!< ... and both hips at least this many torso heights above the frame's bottom
                                       //!< edge (0: on it is enough)
-  double low_hips_min_frame_margin = 0.6; //!< FRONT_LOW is judged only with both hips at least this many torso
-                                          //!< heights above the frame's bottom edge: a body the edge cuts at the
-                                          //!< hips has them placed up to ~0.5 torso heights inside the frame
-                                          //!< (e2e: 0.43 for hips 7 px below it, at visibility 0.9), which
-                                          //!< raises p_bc, so a hand in front can only be misread as lower
+  double low_hips_min_frame_margin = 0.6; //!< hips within this many torso heights of the frame's bottom edge may
+                                          //!< be a body cut below them: placed inside the frame, visible, too high
+  double low_hips_doubt = 0.5;        //!< ... by up to this many torso heights (e2e: 0.54 for hips 7 px below the
+                                      //!< frame, at visibility 0.9), which raises p_bc by half that: a hand in
+                                      //!< front below p_bc by less than half of it is not judged (a hand read
+                                      //!< higher than p_bc stays higher whatever the hips' error)
   double cut_hand_margin = 0.25;      //!< the hips not seen (the body cut above them): an arm whose hand lies below
                                       //!< the shoulders and within this many user-box widths (0.25: a hand square)
                                       //!< of the frame's bottom edge is not read (e2e: a hanging hand out of view
@@ -72,7 +73,8 @@ struct PoseGestureParams {
     v("front_hips_margin_min_bend_deg", front_hips_margin_min_bend_deg, 0.0, 180.0, "FRONT: the hips' margin applies to an arm bent at the elbow at least this much");
     v("hips_min_visibility", hips_min_visibility, 0.0, 1.0, "FRONT is judged only with both hips at least this visible");
     v("hips_min_frame_margin", hips_min_frame_margin, 0.0, 2.0, "FRONT is judged only with both hips at least this many torso heights above the frame's bottom edge");
-    v("low_hips_min_frame_margin", low_hips_min_frame_margin, 0.0, 2.0, "FRONT_LOW is judged only with both hips at least this many torso heights above the frame's bottom edge");
+    v("low_hips_min_frame_margin", low_hips_min_frame_margin, 0.0, 2.0, "hips within this many torso heights of the frame's bottom edge may be placed too high");
+    v("low_hips_doubt", low_hips_doubt, 0.0, 2.0, "... by up to this many torso heights: a hand in front below p_bc by less than half of it is not judged");
     v("cut_hand_margin", cut_hand_margin, 0.0, 2.0, "hips not seen: an arm whose hand is below the shoulders and within this many box widths of the frame's bottom edge is not read");
     v("span_margin", span_margin, 0.0, 1.0, "torso span in x: shoulders' and hips' extent grown by this many torso heights");
     v("face_radius", face_radius, 0.0, 2.0, "a wrist within this many shoulder widths of the face centre is at the face (no command)");
