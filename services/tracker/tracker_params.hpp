@@ -229,7 +229,7 @@ struct BodyFitParams {
 // (a person 6 m or more from a 640x480 camera is too small in the whole frame for the detector: found to 5 m
 // there, to 10 m in a 300 px region). HEALTH says how far it got.
 struct PersonSearchParams {
-  bool enabled = false;                    //!< tracker.person.enabled: the person detector searches too
+  bool enabled = true;                     //!< tracker.person.enabled: the person detector searches too
   std::string models_dir = "models/pose";  //!< folder of pose_detection.onnx (relative: project root)
   double score_threshold = 0.5;            //!< detector score a person needs (MediaPipe 0.5)
   int every_frames = 5;                    //!< budget: the detector runs on one searching frame in this many

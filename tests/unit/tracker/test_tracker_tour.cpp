@@ -115,11 +115,13 @@ TEST(TrackerTour, FaceRecheckKeepsTheScaleWithTheBodyOverflowingTheImage) {
 // still follows the body, PSR stays high. A face the re-check cannot find is no evidence of loss by itself
 // (a drone's view from above, a user turned away): the track holds. Only with the filter's own evidence (PSR
 // below face_miss_psr at the re-check) do face_recheck_misses misses in a row (3 s) make it LOST; here every
-// miss is made to count (face_miss_psr huge) to show that path. -1: never lost.
+// miss is made to count (face_miss_psr huge) to show that path. -1: never lost. The person search is off: it
+// would take the user's body back on the frame the track is lost (PersonSearch.*).
 int frames_until_lost(int face_recheck_misses, double face_miss_psr) {
   const SyntheticParams sp;
   const SyntheticWorld world(sp, Scenario::load("idle"), 1);
   TrackerParams tp;
+  tp.person.enabled = false;
   tp.face_recheck_misses = face_recheck_misses;
   tp.face_miss_psr = face_miss_psr;
   UserTracker tracker(tp, load_tracker_models(tp));

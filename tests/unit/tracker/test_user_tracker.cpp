@@ -157,9 +157,11 @@ TEST(UserTracker, CoveredPersonIsLostThenSearchedForWithoutAFace) {
 
 // The picture drops out (a black frame, as a video link's glitch) for lost_frames + 5 frames: LOST, then the
 // last good filter re-finds the man when the picture comes back (no face to search: he has his back turned).
+// The person search off (with it the detector takes him back on the first frame, below).
 TEST(UserTracker, PictureDropoutIsLostThenRefoundByTheLastGoodFilter) {
   const auto frames = load(kSample);
-  const TrackerParams p;
+  TrackerParams p;
+  p.person.enabled = false;
   UserTracker t(p, load_tracker_models(p));
   t.set_box(kSampleInit);
   for (int i = 0; i < 15; ++i) ASSERT_EQ(t.process(frames[static_cast<size_t>(i)].image).status, TrackStatus::kTracking);
@@ -175,6 +177,29 @@ TEST(UserTracker, PictureDropoutIsLostThenRefoundByTheLastGoodFilter) {
   EXPECT_EQ(out.track_id, 2);
   EXPECT_EQ(out.init, InitSource::kManual);
   for (size_t i = 15 + static_cast<size_t>(p.redetect_frames); i < frames.size(); ++i)
+    ASSERT_EQ((out = t.process(frames[i].image)).status, TrackStatus::kTracking) << "frame " << i + 1;
+  const cv::Rect2d truth53(284, 100, 38, 64);  // as in StaysOnThePersonOfTheRealSequence
+  EXPECT_GT(iou(out.box, truth53), 0.6) << out.box;
+}
+
+// The same dropout with the person search on (the default): the detector, over the last box grown, finds the man
+// on the first frame back, of his size and answered by the last good filter: taken back there, by the body.
+TEST(UserTracker, PictureDropoutIsRefoundByThePersonSearchOnTheFirstFrameBack) {
+  const auto frames = load(kSample);
+  const TrackerParams p;
+  ASSERT_TRUE(p.person.enabled);
+  UserTracker t(p, load_tracker_models(p));
+  t.set_box(kSampleInit);
+  for (int i = 0; i < 15; ++i) ASSERT_EQ(t.process(frames[static_cast<size_t>(i)].image).status, TrackStatus::kTracking);
+  const cv::Mat black(frames[0].image.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int k = 1; k <= p.lost_frames + 5; ++k) t.process(black);
+  ASSERT_EQ(t.last().status, TrackStatus::kLost);
+  TrackOutput out = t.process(frames[15].image);
+  EXPECT_EQ(out.status, TrackStatus::kTracking);
+  EXPECT_EQ(out.init, InitSource::kPerson);
+  EXPECT_EQ(out.track_id, 2);
+  EXPECT_EQ(t.person_counters().reacquired, 1);
+  for (size_t i = 16; i < frames.size(); ++i)
     ASSERT_EQ((out = t.process(frames[i].image)).status, TrackStatus::kTracking) << "frame " << i + 1;
   const cv::Rect2d truth53(284, 100, 38, 64);  // as in StaysOnThePersonOfTheRealSequence
   EXPECT_GT(iou(out.box, truth53), 0.6) << out.box;
