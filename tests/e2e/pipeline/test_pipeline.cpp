@@ -549,7 +549,7 @@ INSTANTIATE_TEST_SUITE_P(
         // Issue 30, re-acquisition: the user walks out of the frame and back in 4 s later, a look-alike walker in
         // other clothes crossing meanwhile: tracked again within 1 s of being back in view, the walker never. The
         // drone holds its heading (synthetic-fixed-heading.yaml): with the default it turns after the user.
-        Scenario{"walk-out", 40, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN}, 0, 0.10, 0.95, 0.0,
+        Scenario{"walk-out", 35, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN}, 0, 0.10, 0.95, 0.0,
                  "synthetic-fixed-heading", false, "", {}, 1.0, 1.0},
         // Issue 30, the back turned: the user turns away for 3 s, an arm out meanwhile (no command with the back
         // turned), and faces the drone again: tracked within 1 s of facing it, the gestures after it flown.
