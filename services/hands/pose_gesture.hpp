@@ -41,8 +41,10 @@ struct PoseGesture {
   const char* rule = "";          //!< which rule decided the person's observation
 };
 
-// user_box: the tracker's box of the user (the paper's Alg. 1 calls a hand beside it out), pixels; none: not used.
-// frame: the image's size (hips on its bottom edge are not seen); none: not used.
+// user_box: the tracker's box of the user (the paper's Alg. 1 calls a hand beside it out; its width sizes the
+// hand square), pixels; none: not used.
+// frame: the image's size (hips on its bottom edge are not seen, hips near it may be placed too high, and a hand
+// at it of a body cut above the hips is not read); none: not used.
 PoseGesture read_pose_gesture(const PoseLandmarks& lm, const PoseGestureParams& p,
                               const std::optional<cv::Rect2f>& user_box = std::nullopt,
                               const std::optional<cv::Size>& frame = std::nullopt);
