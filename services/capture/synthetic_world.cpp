@@ -422,8 +422,10 @@ void SyntheticWorld::draw_head(cv::Mat& img, cv::Mat* labels, const View& v, dou
     const cv::Point3d head_centre(step_x, dims_.face_top - (0.5 - kHeadAboveFaceCentre) * dims_.face_box, 0.0);
     const cv::Point2d c = v.project(head_centre);
     const cv::Point2d top = v.project(head_centre + cv::Point3d(0, 1, 0));
-    const double half_w = v.px(kHeadHalfWidth * dims_.face_box, head_centre), half_h = v.px(kHeadHalfHeight * dims_.face_box, head_centre);
-    paint(img, labels, PartLabel::Head, kHair, [&](cv::Mat& m, const cv::Scalar& col, int line) { ellipse(m, c, top - c, half_h, half_w, col, line); });
+    const double half_w = v.px(kHeadHalfWidth * dims_.face_box, head_centre);
+    const double half_h = v.px(kHeadHalfHeight * dims_.face_box, head_centre);
+    paint(img, labels, PartLabel::Head, kHair,
+          [&](cv::Mat& m, const cv::Scalar& col, int line) { ellipse(m, c, top - c, half_h, half_w, col, line); });
     return;
   }
   const cv::Mat& base = head_levels_.front();

@@ -30,6 +30,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "box_iou.hpp"
 #include "child_process.hpp"
 #include "run_command.hpp"
 #include "decide_eval.hpp"
@@ -322,16 +323,11 @@ Judged judge_gestures(const Recorded& r, double rest_drift_m, const std::vector<
   return j;
 }
 
-// IoU of a track's box with the user's true box (x, y, w, h).
-double box_iou(const float* a, const float* b) {
-  const double iw = std::max(0.0, std::min<double>(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]));
-  const double ih = std::max(0.0, std::min<double>(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]));
-  const double inter = iw * ih, uni = static_cast<double>(a[2]) * a[3] + static_cast<double>(b[2]) * b[3] - inter;
-  return uni > 0 ? inter / uni : 0.0;
-}
+cv::Rect2d rect_of(const float* xywh) { return {xywh[0], xywh[1], xywh[2], xywh[3]}; }
 
+// The track on the user: TRACKING, its box with IoU >= 0.5 with the user's true box.
 bool on_user(const user_track_t& t, const ground_truth_t& m) {
-  return t.status == user_track_t::STATUS_TRACKING && box_iou(t.box, m.user_box) >= 0.5;
+  return t.status == user_track_t::STATUS_TRACKING && iou(rect_of(t.box), rect_of(m.user_box)) >= 0.5;
 }
 
 // The track against the truth (issues 13, 30): of the frames TRACKING with the user in view (true box centre in
@@ -356,8 +352,8 @@ double share_on_user(const Recorded& r) {
 }
 
 // Re-acquisition (issue 30): each time the user is back fully in view (the true face inside the frame, the true
-// body box within it side to side) after at least 1 s out of it or turned away (the truth has no face then), the seconds until the track is on them again
-// (TRACKING, IoU >= 0.5; 0 when it held them); infinity when it never is.
+// body box within it side to side) after at least 1 s out of it or turned away (the truth has no face then), the
+// seconds until the track is on them again (on_user; 0 when it held them); infinity when it never is.
 std::vector<double> reacquire_delays_s(const Recorded& r) {
   constexpr int64_t kAwayUs = 1'000'000;
   std::vector<double> delays;
