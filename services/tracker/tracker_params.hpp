@@ -336,6 +336,12 @@ struct TrackerParams {
   // (36 px face) took 11-18 ms, a frame -> USER_TRACK of 23-55 ms every second; a larger face than expected
   // is still taken up to twice the width (the scale gate).
   double face_recheck_min_share = 0.7;
+  // A re-check changes the box's size by at most this share (up or down); the rest waits for the next re-check,
+  // brought forward to weak_recheck_frames. A head turning away shows the cascade part of a face: in every
+  // e2e turn-around run a re-check took one at 0.66-0.76 of the box's face and shrank the box to 0.69-0.84 of
+  // the person for the 5 s the back was turned (IoU 0.49 in one: the track judged off the user); the drone
+  // moving in or out gave re-check steps of 0.80-0.87 and 1.15-1.25 (e2e suite, 30 resizes).
+  double face_recheck_max_step = 0.15;  //!< 0: no limit
   // A face the cascade cannot find is not by itself evidence of loss (a drone's view from above, a user far
   // away or turned away): a re-check miss counts only on a frame whose PSR is also weak (below
   // face_miss_psr). A track started from the face whose face has been missed so at this many re-checks in a
@@ -391,6 +397,7 @@ struct TrackerParams {
     v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
     v("face_recheck_min_share", face_recheck_min_share, 0.5, 1.0, "re-check: smallest face searched, share of the expected face width");
+    v("face_recheck_max_step", face_recheck_max_step, 0.0, 10.0, "a re-check changes the box's size by at most this share, the rest at the next re-check, due after weak_recheck_frames (0: no limit)");
     v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");
     v("face_miss_psr", face_miss_psr, 0.0, 1000.0, "a re-check miss counts only when the frame's PSR is below this");
     v("recheck_min_torso_match", recheck_min_torso_match, 0.0, 1.0, "re-check: a face whose torso colours match the track's less is not the user's (0: off)");

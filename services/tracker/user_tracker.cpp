@@ -86,6 +86,7 @@ void UserTracker::reset() {
   out_.face.reset();
   recheck_psr_.reset();
   recheck_face_.reset();
+  resize_pending_ = false;
   bad_frames_ = 0;
   searches_ = 0;
   torso_colours_.clear();  // whoever comes is the user (RESET: a new user)
@@ -124,6 +125,7 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   bad_frames_ = 0;
   frames_since_face_ = 0;
   if (new_track) face_misses_ = 0;
+  if (new_track) resize_pending_ = false;
 }
 
 // The face as published: clipped to the frame (a downscaled search can put its edge up to a pixel outside).
@@ -142,6 +144,7 @@ cv::Rect2d UserTracker::body_box(const cv::Rect2d& window) const {
 // of that face and the tracked box disagree, restarts the filter on the face's box (same track).
 UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   frames_since_face_ = 0;
+  resize_pending_ = false;
   const cv::Rect2d& b = out_.box;
   const double fw = b.width / track_body_.width_in_faces;
   const cv::Rect roi = face_recheck_window(b, track_body_);
@@ -168,7 +171,12 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // the box and keeps its size; a resize keeps the box's shape (the track's ratios).
   const bool resize = scale > std::log1p(p_.face_recheck_tolerance);
   if (resize || std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width) {
-    const double k = resize ? face->face.width / fw : 1.0;
+    double k = resize ? face->face.width / fw : 1.0;
+    const double step = 1.0 + p_.face_recheck_max_step;
+    if (p_.face_recheck_max_step > 0 && (k > step || k < 1.0 / step)) {
+      k = std::clamp(k, 1.0 / step, step);
+      resize_pending_ = true;  // the rest, if the next re-check still finds it
+    }
     start(frame, cv::Rect2d(centre.x - k * b.width / 2, centre.y - k * b.height / 2, k * b.width, k * b.height), out_.init,
           false);
   }
@@ -435,7 +443,7 @@ void UserTracker::track_frame(const cv::Mat& frame) {
   const bool weak = (e.psr < p_.weak_recheck_psr || at_edge) && !torso_colours_.empty() && p_.recheck_min_torso_match > 0;
   ++frames_since_face_;
   if (p_.face_recheck_frames > 0 &&
-      (frames_since_face_ >= p_.face_recheck_frames || (weak && frames_since_face_ >= p_.weak_recheck_frames)))
+      (frames_since_face_ >= p_.face_recheck_frames || ((weak || resize_pending_) && frames_since_face_ >= p_.weak_recheck_frames)))
     recheck_psr_ = e.psr;  // finish() re-checks this frame's face, after its output is out
 }
 

@@ -133,6 +133,7 @@ class UserTracker {
   cv::Size frame_size_;
   int bad_frames_ = 0;
   int frames_since_face_ = 0;
+  bool resize_pending_ = false;  //!< the last re-check's resize was cut to face_recheck_max_step: re-check soon
   int face_misses_ = 0;
   int lost_for_ = 0;           //!< frames since the track was lost (LOST, then SEARCHING: user_memory_frames)
   int redetect_hits_ = 0;      //!< LOST frames in a row where the last good filter's PSR was >= redetect_psr
