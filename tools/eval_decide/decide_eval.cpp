@@ -187,10 +187,12 @@ Score score_commands(const std::vector<TruthFrame>& truth, const std::vector<Sco
       reacted = reacted || right;
       if (!right) ++s.wrong_frames;
       if (lag) ++s.old_frames;
-      // The next gesture's command while the true hand already shows it (the label switches half-way through
-      // the arm's move, the paper's rules on the true hand may switch before) is early, not false.
-      const bool early = k + 1 < segs.size() && c.mode == segs[k + 1].mode && c.mode == truth[i].expected_mode;
-      const bool is_false = c.mode != kHover && c.mode != seg.mode && !(lag && c.mode == old_mode) && !early;
+      // The command the paper's rules give on the true hands of this frame is not false: the next gesture's
+      // while the true hand already shows it (the label switches half-way through the arm's move, the rules on
+      // the true hand may switch before), or one the arm passes through on its way (an arm lowered slowly from
+      // out to rest is out and down, DOWN, for a second: fine-piloting).
+      const bool shown = c.mode == truth[i].expected_mode;
+      const bool is_false = c.mode != kHover && c.mode != seg.mode && !(lag && c.mode == old_mode) && !shown;
       if (is_false) {
         const bool onset = prev_false_mode != c.mode;
         if (onset) s.false_list.push_back({truth[i].utime, seg.mode, c.mode, 0});

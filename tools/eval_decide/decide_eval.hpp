@@ -86,7 +86,8 @@ struct Score {
   int64_t old_frames = 0;      //!< frames from each change up to its first right command (the reaction)
   int64_t wrong_frames = 0;    //!< frames whose command is not the one the truth asks for (old ones included)
   // A command nobody asked for: not HOVER, not the truth's, not the previous gesture's command still held
-  // while the reaction runs, and not the next gesture's shown early by the true hand. Counted in episodes
+  // while the reaction runs, and not the one the paper's rules give on the frame's true hands (the next
+  // gesture's shown early, or one the arm passes through on its way). Counted in episodes
   // (onsets) and frames.
   int false_at_rest = 0;       //!< ... while the user rests
   int64_t false_at_rest_frames = 0;

@@ -99,6 +99,23 @@ TEST(DecideScore, TheNextGesturesCommandShownByTheTrueHandIsEarlyNotConfused) {
   EXPECT_EQ(sc.confused_frames, 2);
 }
 
+TEST(DecideScore, ACommandTheTrueHandShowsOnItsWayToRestIsNotFalse) {
+  // REST after OUT, the arm lowered slowly: for 15 frames the true hand is out and down (the rules give DOWN);
+  // DOWN commanded on 10 of them is not false. DOWN once the true hand shows nothing is.
+  Sequence s;
+  s.add(40, G::GESTURE_OUT, M::MODE_FINE, kLeft, -0.5, 0);
+  s.add(20, G::GESTURE_REST, M::MODE_FINE, kHoverCmd, -0.5, 0);
+  s.add(5, G::GESTURE_REST, M::MODE_DOWN, kHoverCmd, -0.2, 0.5);
+  s.add(10, G::GESTURE_REST, M::MODE_DOWN, {M::MODE_DOWN, {0, 0.5}}, -0.2, 0.5);
+  s.add(40, G::GESTURE_REST, M::MODE_HOVER, kHoverCmd);
+  EXPECT_EQ(score_commands(s.truth, s.cmds, ScoreRules{}).false_at_rest, 0);
+  Sequence t = s;
+  for (size_t i = 75; i < 78; ++i) t.cmds[i] = {M::MODE_DOWN, {0, 0.5}};
+  const Score sc = score_commands(t.truth, t.cmds, ScoreRules{});
+  EXPECT_EQ(sc.false_at_rest, 1);
+  EXPECT_EQ(sc.false_at_rest_frames, 3);
+}
+
 TEST(DecideScore, AnArmOnItsWayOutIsOneGestureWithWhereItArrives) {
   // The arm sweeps through directions 60 degrees apart for 0.4 s (10 frames) before it settles: one change,
   // at the label's switch, not a short gesture the command could never catch.

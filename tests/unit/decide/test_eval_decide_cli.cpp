@@ -33,10 +33,10 @@ TEST(EvalDecideCli, JsonIsOneObjectWithTheRecordedRunFirst) {
   EXPECT_EQ(g["minutes"], 0.066) << r.out;  // 3.96 s from the first frame to the last, three decimals
   EXPECT_EQ(g["changes"], 0);
   EXPECT_TRUE(g["reaction_median_s"].is_null()) << r.out;  // no change to react to
-  EXPECT_EQ(g["false_at_rest"], 6);
-  EXPECT_EQ(g["false_at_rest_frames"], 69);
+  EXPECT_EQ(g["false_at_rest"], 3);  // the commands equal to the frame's expected mode are not false
+  EXPECT_EQ(g["false_at_rest_frames"], 33);
   EXPECT_EQ(g["wrong_percent"], 69.0);
-  EXPECT_EQ(g["false_per_minute"], 90.909) << r.out;  // 6 / (3.96 s / 60)
+  EXPECT_EQ(g["false_per_minute"], 45.455) << r.out;  // 3 / (3.96 s / 60)
   ASSERT_EQ(recorded["per_log"].size(), 1u);
   EXPECT_EQ(recorded["per_log"][0]["log"], log);
   EXPECT_EQ(recorded["per_log"][0]["gesture_cmd"], g);

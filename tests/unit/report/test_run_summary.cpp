@@ -115,17 +115,18 @@ TEST_F(RunSummaryTest, TheEvidenceRuleIsJudgedFromEightTenthsOfASecondAfterEachC
 }
 
 TEST_F(RunSummaryTest, ReactionScoresEveryFrameJoinedBySeq) {
-  // The synthetic truth says REST throughout (its gesture field is 0): every command that is not HOVER is a
-  // motion asked while resting. Episodes: FINE 31..39, UP 40, FINE 41..80, CLOSER 81..89, FURTHER 90,
-  // CLOSER 91..99: 6 of them, 69 frames; no change to react to.
+  // The synthetic truth says REST throughout (its gesture field is 0): every command that is not HOVER and not
+  // the frame's expected mode (FINE before frame 50, CLOSER from it) is a motion asked while resting. Episodes:
+  // UP 40, FINE 50..80, FURTHER 90: 3 of them, 33 frames (FINE 31..49 and CLOSER 81..99 are what the true hands
+  // show); 69 frames differ from the truth's HOVER; no change to react to.
   const Summary s = analyse(run, 60);
   EXPECT_EQ(s.reaction.frames, 100);
   EXPECT_EQ(s.reaction.changes, 0);
-  EXPECT_EQ(s.reaction.false_at_rest, 6);
-  EXPECT_EQ(s.reaction.false_at_rest_frames, 69);
+  EXPECT_EQ(s.reaction.false_at_rest, 3);
+  EXPECT_EQ(s.reaction.false_at_rest_frames, 33);
   EXPECT_EQ(s.reaction.wrong_frames, 69);
   EXPECT_EQ(summary_json(s)["gesture_reaction"]["changes"], 0);
-  EXPECT_EQ(summary_json(s)["gesture_reaction"]["false_at_rest"], 6);
+  EXPECT_EQ(summary_json(s)["gesture_reaction"]["false_at_rest"], 3);
 }
 
 TEST_F(RunSummaryTest, NoTruthNoAccuracy) {
