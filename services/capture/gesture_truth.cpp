@@ -35,15 +35,8 @@ ExpectedCommand expected_command(const cv::Rect2f& box, const std::array<cv::Poi
   // cut was seen and flown, and judged a false DOWN).
   const int side = hand_square_side(kHandSquareRatio, box.width, image);
   const bool cut_body = !square_in_view(e.body_centre, side, image);
-  // With the hips out of view, a hand at the bottom edge may be a hanging one the pose model placed there out of
-  // view: neither the stage nor the truth reads a hand below the shoulders within a hand square of that edge.
-  const cv::Point2f hip_centre = 2.0f * e.body_centre - e.shoulder_centre;
-  const double torso_height = static_cast<double>(hip_centre.y) - e.shoulder_centre.y;
-  const bool hips_cut = hip_centre.y > image.height - kCutHipsMargin * torso_height;
   const auto border_cut = [&](const cv::Point2f& p) {
-    if (p.y <= e.shoulder_centre.y) return false;
-    return (cut_body && square_cut_by_side_or_bottom(p, side, image, 0.5f * std::max(0.0f, hand_size))) ||
-           (hips_cut && p.y > image.height - side);
+    return cut_body && p.y > e.shoulder_centre.y && square_cut_by_side_or_bottom(p, side, image, 0.5f * std::max(0.0f, hand_size));
   };
 
   // Alg. 1: a hand outside the box (but within an arm's reach of it and in the image).

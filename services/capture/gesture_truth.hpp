@@ -17,11 +17,7 @@
 // - the forearm's skin is ignored (the real Alg. 1 may pick a point on a raised forearm, not the hand);
 // - while the body centre's hand square is out of the image no hand in front can be judged (higher or lower
 //   than a centre out of view is unknown), nor a hand below the shoulders whose square the border cuts
-//   wherever on the hand (a square of hand_size about its centre) it sits: such a gesture is not in view;
-// - while the hips are out of the image (within kCutHipsMargin torso heights of its bottom edge, or below it) a
-//   hand below the shoulders within a hand square of the bottom edge is not seen either: BlazePose places a
-//   hanging hand out of view there, the whole arm raised out and down as a DOWN arm is, and the pose method reads
-//   no hand there (pose_gesture.cut_hand_margin).
+//   wherever on the hand (a square of hand_size about its centre) it sits: such a gesture is not in view.
 // The command is what Alg. 3 gives once the buffers are full of this frame's observation: OUT -> FINE, or
 // UP/DOWN when |y| > |λ4 x| (x then 0); FRONT -> CLOSER (y < 0, z = +1) or FURTHER (y > 0, z = -1); else HOVER.
 #pragma once
@@ -47,7 +43,6 @@ constexpr double kNeckInFaces = 0.35;         // the neck reaches this many face
 constexpr double kFrontGateRatio = 0.2;       // Alg. 2: a hand in front lies within w/5 of p_bc in x (the paper)
 constexpr double kLambda2 = 0.2;              // Alg. 1's weight of the height above p_uc (the paper's λ2)
 constexpr double kLambda4 = 0.5;              // Alg. 3: UP/DOWN when |y| > |λ4 x| (the paper's λ4)
-constexpr double kCutHipsMargin = 0.1;        // hips this many torso heights above the bottom edge or lower are cut
 }  // namespace truth_rules
 
 // Where the person's shoulders and torso are in the image (the scene knows its figure's joints): p_uc the
