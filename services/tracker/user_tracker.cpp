@@ -124,8 +124,10 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   held_runs_ = 0;
   bad_frames_ = 0;
   frames_since_face_ = 0;
-  if (new_track) face_misses_ = 0;
-  if (new_track) resize_pending_ = false;
+  if (new_track) {
+    face_misses_ = 0;
+    resize_pending_ = false;
+  }
 }
 
 // The face as published: clipped to the frame (a downscaled search can put its edge up to a pixel outside).
