@@ -370,6 +370,14 @@ struct TrackerParams {
   // them within 6 frames at PSR 8..9 (it still learns from 6), before the next second's re-check.
   int weak_recheck_frames = 3;
   double weak_recheck_psr = 12.0;
+  // A torso that matches the clothes last found where the user's face should be (a re-check that found someone
+  // else's face there, or neither face nor the user's clothes) better than the user's is not the user's: that
+  // person again, over part of the user. Scenario bystander's look-alike walker crossing in front a second time:
+  // a re-check found the user's face with the walker's shirt over the torso and restarted the filter there, on
+  // the walker (they took the box 1-6 frames, the drone turning after it); or, the track LOST, the person search
+  // took the walker back as the user (their torso, showing both shirts, matched the user's clothes 0.52, the gate
+  // 0.5). A torso with more of the walker's shirt than the user's is then the walker's: LOST, refused.
+  bool recheck_other_clothes = true;
   double torso_colour_rate = 0.2;
   int torso_colour_bins = 8;
   double torso_dark_level = 20.0;
@@ -404,6 +412,7 @@ struct TrackerParams {
     v("user_memory_frames", user_memory_frames, 0, 1000000, "frames SEARCHING during which a face must still wear the lost user's clothes (0 = any face)");
     v("weak_recheck_frames", weak_recheck_frames, 1, 100000, "a track that knows the user's clothes is re-checked this often while PSR < weak_recheck_psr, frames");
     v("weak_recheck_psr", weak_recheck_psr, 0.0, 1000.0, "PSR below which such a track is re-checked every weak_recheck_frames (0: never early)");
+    v("recheck_other_clothes", recheck_other_clothes, "a torso more like the clothes last found in the user's place than the user's is not the user's");
     v("torso_colour_rate", torso_colour_rate, 0.0, 1.0, "blend rate of the track's torso colours at each matching re-check");
     v("torso_colour_bins", torso_colour_bins, 2, 64, "torso colours: chromaticity bins per axis");
     v("torso_dark_level", torso_dark_level, 0.0, 255.0, "torso colours: pixels with a mean level below this are not read");

@@ -90,6 +90,7 @@ void UserTracker::reset() {
   bad_frames_ = 0;
   searches_ = 0;
   torso_colours_.clear();  // whoever comes is the user (RESET: a new user)
+  other_clothes_.clear();
   faces_.restart_scan();
   held_person_.reset();
   held_runs_ = 0;
@@ -164,6 +165,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   if (scale > std::log(kMaxRecheckFaceScale)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
+    other_clothes_ = torso_seen(frame, face->face);
     ++other_faces_;
     return FaceCheck::Other;
   }
@@ -192,9 +194,21 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
 // image's edge after a user who walked out of view. The torso where the box puts it (the part in view) tells
 // which: the user's clothes, `users` (a miss, or out of view); other colours, the box is not on the user.
 UserTracker::FaceCheck UserTracker::missed_face(const cv::Mat& frame, FaceCheck users) {
-  if (wears_users_clothes(frame, face_from_body(out_.box, track_body_))) return users;
+  const cv::Rect2d face = face_from_body(out_.box, track_body_);
+  if (wears_users_clothes(frame, face)) return users;
+  other_clothes_ = torso_seen(frame, face);
   ++off_user_;
   return FaceCheck::OffUser;
+}
+
+std::vector<float> UserTracker::torso_seen(const cv::Mat& frame, const cv::Rect2d& face) const {
+  return torso_colours(frame, face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+}
+
+// A new user: their clothes are the torso's under their face; nobody else's known yet.
+void UserTracker::set_user_clothes(const cv::Mat& frame, const cv::Rect2d& face) {
+  torso_colours_ = torso_seen(frame, face);
+  other_clothes_.clear();
 }
 
 // Whether the torso under a face wears the track's clothes (recheck_min_torso_match); true when there is
@@ -202,10 +216,13 @@ UserTracker::FaceCheck UserTracker::missed_face(const cv::Mat& frame, FaceCheck 
 // torso's colours into the track's.
 bool UserTracker::wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn) {
   if (p_.recheck_min_torso_match <= 0 || torso_colours_.empty()) return true;
-  const std::vector<float> seen = torso_colours(frame, face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+  const std::vector<float> seen = torso_seen(frame, face);
   const double match = colour_match(torso_colours_, seen);
   if (match < 0) return true;
   if (match < p_.recheck_min_torso_match) return false;
+  // A torso more like the clothes last found where the user's should be (Other, OffUser) than the user's: that
+  // person again, over part of the user (recheck_other_clothes).
+  if (p_.recheck_other_clothes && !other_clothes_.empty() && colour_match(other_clothes_, seen) > match) return false;
   if (learn)
     for (size_t i = 0; i < seen.size(); ++i)
       torso_colours_[i] += static_cast<float>(p_.torso_colour_rate) * (seen[i] - torso_colours_[i]);
@@ -283,7 +300,7 @@ bool UserTracker::search(const cv::Mat& frame) {
     if (known)
       wears_users_clothes(frame, face.face, true);
     else
-      torso_colours_ = torso_colours(frame, face.face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+      set_user_clothes(frame, face.face);
     found_face(frame, face.face);
     faces_.restart_scan();  // the next search (after a loss) scans from the first tile
     return true;
@@ -400,7 +417,7 @@ bool UserTracker::search_person(const cv::Mat& frame, bool remembered) {
   }
   track_body_ = fit.body;
   start(frame, fit.box, InitSource::kPerson);
-  torso_colours_ = torso_colours(frame, face, p_.body_fit, p_.torso_colour_bins, p_.torso_dark_level);
+  set_user_clothes(frame, face);
   ++person_counters_.started;
   person_misses_ = 0;
   faces_.restart_scan();
@@ -534,6 +551,7 @@ const TrackOutput& UserTracker::track(const cv::Mat& frame) {
     if (box.width >= 2 && box.height >= 2) {
       track_body_ = p_.body();  // a manual box's face re-check uses the preset ratios
       torso_colours_.clear();   // and knows no clothes: its re-check is not gated by them
+      other_clothes_.clear();
       start(frame, box, InitSource::kManual);
       return out_;
     }

@@ -116,6 +116,8 @@ class UserTracker {
   FaceCheck recheck_face(const cv::Mat& frame);
   FaceCheck missed_face(const cv::Mat& frame, FaceCheck users);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
+  std::vector<float> torso_seen(const cv::Mat& frame, const cv::Rect2d& face) const;
+  void set_user_clothes(const cv::Mat& frame, const cv::Rect2d& face);
   cv::Rect2d body_box(const cv::Rect2d& window) const;
   //! The user's face width as the last good box puts it (its width over the track's face widths).
   double last_face_width() const { return last_good_box_.width / track_body_.width_in_faces; }
@@ -143,6 +145,9 @@ class UserTracker {
   int64_t off_user_ = 0;
   int64_t scans_skipped_ = 0;
   std::vector<float> torso_colours_;  //!< the user's torso chromaticity (tracks from a face; empty: no gate)
+  //! The torso colours found where the user's face should be at the last re-check that found someone else there
+  //! (Other) or no user (OffUser); empty: none since the user was taken.
+  std::vector<float> other_clothes_;
   std::optional<double> recheck_psr_;  //!< track() found a re-check due (this frame's PSR): finish() does it
   struct RecheckFace {
     cv::Rect2d face, box;  //!< the face found and the box (as re-anchored) on the re-check's frame

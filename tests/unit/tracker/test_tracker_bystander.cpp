@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <iterator>
 #include <optional>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -298,11 +300,13 @@ TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirBuild) {
 // them at such a moment (match 0.62, above the gate's 0.5): once the walker had gone, the user's own shirt
 // matched 0.45, the re-check took their face for someone else's, and the search refused them for the 10 s of
 // user_memory_frames (that run's log, all its frames: 320 frames LOST before, 6 now). Here the walker stops
-// 0.18 m to the user's side; the user's own torso is rendered without the walker on the same frame.
+// 0.22 m to the user's side; the user's own torso is rendered without the walker on the same frame. (At 0.18 m
+// the torso shows more of the walker's shirt than of the user's, matching the walker's 0.85 and the user's 0.54:
+// not taken back while the walker stands there, recheck_other_clothes.)
 TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirClothes) {
   std::string yaml = kStandsInFront;
   const std::string walks_out = "{t: 6.5, east: 2.6, transition_s: 2}";
-  yaml.replace(yaml.find(walks_out), walks_out.size(), "{t: 6, east: 0.18, transition_s: 0.5}");
+  yaml.replace(yaml.find(walks_out), walks_out.size(), "{t: 6, east: 0.22, transition_s: 0.5}");
   std::string alone = yaml;
   const size_t from = alone.find("bystanders:"), to = alone.find("keyframes:\n  - {t: 0, gesture: REST}");
   alone.erase(from, to - from);
@@ -324,8 +328,8 @@ TEST(TrackerBystander, AUserReFoundHalfHiddenKeepsTheirClothes) {
     std::printf("user re-found half hidden at frame %d: the track's clothes match the user's own shirt %.3f (what "
                 "showed: %.3f)\n", i, kept, replaced);
     ASSERT_GE(i, static_cast<int>(6.5 * sp.fps));  // with the walker standing over part of them
-    EXPECT_LT(replaced, 0.8);                      // the shirt that showed was in part the walker's
-    EXPECT_GT(kept, 0.85);
+    EXPECT_LT(replaced, 0.85);                     // the shirt that showed was in part the walker's
+    EXPECT_GT(kept, 0.9);
     return;
   }
   FAIL() << "the user was not lost and found again";
@@ -354,6 +358,71 @@ TEST(TrackerBystander, AUserReFoundOnAPartOfTheirFaceKeepsTheirSize) {
   ASSERT_GT(small_face, 0.0);
   ASSERT_LT(small_face, 0.8 * last_face) << "the part was not what was found (last face " << last_face << " px)";
   EXPECT_NEAR(r.out.box.width / r.width_before, 1.0, 0.1);
+}
+
+// Scenario bystander as the drone flew it in an e2e run: the look-alike walker crosses between user and drone
+// twice (10-14 s, and 21.5-25.5 s while the user points and the drone slides 1.3 m sideways, turning 17 deg).
+// The camera path is that run's (every 0.5 s, linear between; a hover's 0.3 deg of yaw wobble on top), and 30 % of
+// the frames are skipped at random, as a loaded machine's tracker skips them. Returns the longest run of frames
+// TRACKING off the user (IoU < 0.3) from 8 s on: the drone turns after the box while it lasts.
+int longest_drag(const TrackerParams& tp, unsigned drop_pattern) {
+  struct Pose {
+    double t, north, east, down, yaw;
+  };
+  static const Pose kPath[] = {
+      {0.0, 0.000, 0.000, -1.500, 0.000},   {5.0, 0.000, 0.000, -1.500, 0.000},   {5.5, 0.000, -0.063, -1.502, 0.000},
+      {6.0, 0.000, -0.238, -1.508, 0.003},  {6.5, 0.002, -0.440, -1.515, 0.061},  {7.0, 0.015, -0.653, -1.524, 0.132},
+      {7.5, 0.043, -0.866, -1.535, 0.203},  {8.0, 0.085, -1.081, -1.546, 0.273},  {8.5, 0.142, -1.290, -1.555, 0.342},
+      {9.0, 0.198, -1.458, -1.550, 0.411},  {9.5, 0.213, -1.500, -1.548, 0.447},  {10.0, 0.216, -1.507, -1.547, 0.448},
+      {10.5, 0.216, -1.509, -1.547, 0.449}, {15.0, 0.216, -1.509, -1.547, 0.449}, {15.5, 0.192, -1.460, -1.549, 0.449},
+      {16.0, 0.121, -1.312, -1.554, 0.449}, {16.5, 0.043, -1.150, -1.560, 0.443}, {17.0, -0.035, -0.982, -1.566, 0.388},
+      {17.5, -0.108, -0.805, -1.569, 0.327}, {18.0, -0.171, -0.620, -1.572, 0.267}, {18.5, -0.227, -0.421, -1.575, 0.204},
+      {19.0, -0.264, -0.255, -1.568, 0.141}, {19.5, -0.273, -0.214, -1.566, 0.114}, {20.0, -0.274, -0.207, -1.565, 0.113},
+      {20.5, -0.275, -0.205, -1.565, 0.113}, {22.0, -0.275, -0.205, -1.565, 0.113}, {22.5, -0.267, -0.277, -1.568, 0.113},
+      {23.0, -0.244, -0.472, -1.576, 0.113}, {23.5, -0.221, -0.679, -1.585, 0.127}, {24.0, -0.196, -0.874, -1.596, 0.161},
+      {24.5, -0.186, -0.938, -1.599, 0.223}, {25.0, -0.155, -1.074, -1.603, 0.256}, {25.5, -0.103, -1.267, -1.609, 0.312},
+      {26.0, -0.054, -1.428, -1.603, 0.374}, {26.5, -0.041, -1.467, -1.601, 0.401}, {27.0, -0.039, -1.474, -1.601, 0.402}};
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::load("bystander"), 1);
+  UserTracker tracker(tp, load_tracker_models(tp));
+  std::mt19937 rng(drop_pattern);
+  int run = 0, longest = 0;
+  for (int i = 0; i < static_cast<int>(27.0 * sp.fps); ++i) {
+    if (i > 4 * sp.fps && rng() % 10 < 3) continue;
+    const double t = i / sp.fps;
+    size_t k = 0;
+    while (k + 2 < std::size(kPath) && kPath[k + 1].t <= t) ++k;
+    const Pose &a = kPath[k], &b = kPath[k + 1];
+    const double w = std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0);
+    const auto mix = [w](double x, double y) { return x + w * (y - x); };
+    const double wobble = 0.3 * CV_PI / 180 * std::sin(2.1 * t + drop_pattern);
+    const SyntheticFrame f =
+        world.render(t, i, CameraPose{mix(a.north, b.north), mix(a.east, b.east), mix(a.down, b.down), mix(a.yaw, b.yaw) + wobble});
+    const TrackOutput out = tracker.process(f.bgr);
+    const bool off = i > 8 * sp.fps && out.status == TrackStatus::kTracking && iou(out.box, cv::Rect2d(f.truth.user_box)) < 0.3;
+    run = off ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  return longest;
+}
+
+// recheck_other_clothes: after the first crossing the track knows the walker's shirt; on the second a torso
+// showing more of it than of the user's is the walker's. Measured on 24 drop patterns: without the rule one took
+// the box 4 frames; with it none (on a second bench, each camera pose held for the log's 8 ms steps and 36
+// patterns: 6 took it 1-6 frames without, 2 took it 3 frames with).
+TEST(TrackerBystander, AWalkerCrossingWhileTheDroneMovesDoesNotTakeTheBox) {
+  TrackerParams without;
+  without.recheck_other_clothes = false;
+  int with_max = 0, without_max = 0;
+  for (unsigned pattern = 1; pattern <= 12; ++pattern) {
+    const int a = longest_drag(TrackerParams{}, pattern), b = longest_drag(without, pattern);
+    std::printf("drop pattern %u: longest run TRACKING off the user %d frames (without recheck_other_clothes: %d)\n",
+                pattern, a, b);
+    with_max = std::max(with_max, a);
+    without_max = std::max(without_max, b);
+  }
+  EXPECT_EQ(with_max, 0);
+  EXPECT_GE(without_max, 3);
 }
 
 // torso_colours: chromaticity, so a gain on the light leaves it; another shirt does not match.
