@@ -49,6 +49,14 @@ struct FlightParams {
   // not be given (a closed-loop tour ended CLOSER at 2.2 m with the hips on the bottom edge, and FURTHER was no
   // command for 4 s). Ours; 0 turns it off.
   double closest_hips_box_ratio = 0.7;
+  // No climbing while the user box's point this many box heights below its top (1: the box's bottom, below the
+  // hanging hands) is at or below the image's bottom edge. Climbing moves the user down the image. With the hips
+  // and the hanging hands cut, BlazePose invents arms: after two UPs a closed-loop tour left the hips 12 px below
+  // the frame and a DOWN that followed was not flown (a hanging hand out of view is placed out and down at the
+  // edge: cut_hand_margin); held with the hips 25 px above the edge (0.9 of the box), a resting hand half cut by
+  // it was read raised: no DOWN and a false command at rest. Held, the drone still climbs about 0.08 box heights
+  // (the setpoint-to-motion lag and the track's). Ours; 0 turns it off.
+  double climb_view_box_ratio = 1.0;
   // With MAVLink, the autopilot's own offboard-loss failsafe (PX4 COM_OF_LOSS_T, ArduPilot GUID_TIMEOUT) is what
   // stops the vehicle when this process goes quiet: ENGAGE is refused unless the autopilot reports one no
   // longer than this.
@@ -79,6 +87,8 @@ struct FlightParams {
       "no closing in while the user box is this many image heights tall (0: no limit)");
     v("closest_hips_box_ratio", closest_hips_box_ratio, 0.0, 2.0,
       "no closing in while the point this many box heights below the user box's top is at the image's bottom (0: no limit)");
+    v("climb_view_box_ratio", climb_view_box_ratio, 0.0, 2.0,
+      "no climbing while the point this many box heights below the user box's top is at the image's bottom (0: no limit)");
     v("max_autopilot_loss_s", max_autopilot_loss_s, 0.0, 60.0,
       "MAVLink: refuse ENGAGE unless the autopilot's offboard-loss failsafe (COM_OF_LOSS_T/GUID_TIMEOUT) is <= this, s");
   }

@@ -114,6 +114,7 @@ TEST(FlightBridge, NoClimbAboveTheHeightBandNoDescentBelowIt) {
 
 TEST(FlightBridge, MotionsThatTakeTheFaceOutOfViewAreHeld) {
   FlightParams p;
+  p.climb_view_box_ratio = 0;  // a face at the bottom has the box below the image: only the face band here
   GestureCommand down = fine(0.0, 0.4), up = fine(0.0, -0.4), side_down = fine(-0.5, 0.4);
   down.mode = GestureMode::Down;
   up.mode = GestureMode::Up;
@@ -191,6 +192,32 @@ TEST(FlightBridge, NoClosingInOnceTheUsersHipsReachTheImagesBottom) {
   in.track->box[1] = 300;
   in.track->box[3] = 300;
   EXPECT_DOUBLE_EQ(b.update(in).velocity[0], 0.5) << "closest_hips_box_ratio 0: no limit";
+}
+
+TEST(FlightBridge, NoClimbingOnceTheUserBoxReachesTheImagesBottom) {
+  FlightParams p;  // climb_view_box_ratio 1 (the box's bottom); a 480 px image; 250 px boxes, the face band inside
+  GestureCommand up = fine(0.0, -0.4), down = fine(0.0, 0.4), up_left = fine(-0.5, -0.4);
+  up.mode = GestureMode::Up;
+  down.mode = GestureMode::Down;
+  struct Case { const char* what; GestureCommand c; double box_y; double vy, vz; bool held; };
+  for (const Case& k : {Case{"climb, box bottom at 479 px", up, 229, 0, -0.4, false},
+                        Case{"climb, box bottom at 480 px", up, 230, 0, 0.0, true},
+                        Case{"climb, box below the image", up, 380, 0, 0.0, true},
+                        Case{"descend, box below the image", down, 380, 0, 0.4, false},
+                        Case{"sideways and up, box below the image", up_left, 380, -0.5, 0.0, true}}) {
+    FlightBridge b{p};
+    BridgeInputs in = ready(k.c);
+    in.track->box[1] = k.box_y;  // 230 + 250 = 480
+    const Setpoint sp = b.update(in);
+    EXPECT_DOUBLE_EQ(sp.velocity[1], k.vy) << k.what;
+    EXPECT_DOUBLE_EQ(sp.velocity[2], k.vz) << k.what;
+    EXPECT_EQ((sp.reasons & reason::kViewLimit) != 0, k.held) << k.what;
+  }
+  p.climb_view_box_ratio = 0;
+  FlightBridge b{p};
+  BridgeInputs in = ready(up);
+  in.track->box[1] = 380;
+  EXPECT_DOUBLE_EQ(b.update(in).velocity[2], -0.4) << "climb_view_box_ratio 0: no limit";
 }
 
 TEST(FlightBridge, SpeedIsClippedToTheLimitsAndSaysSo) {
