@@ -34,7 +34,6 @@
 #include "child_process.hpp"
 #include "run_command.hpp"
 #include "decide_eval.hpp"
-#include "pose_gesture_params.hpp"
 #include "gpilot/flight_control_t.hpp"
 #include "gpilot/flight_setpoint_t.hpp"
 #include "gpilot/gesture_cmd_t.hpp"
@@ -229,27 +228,6 @@ void camera_to_world(const float c[3], double yaw, double w[3]) {
 
 struct Judged { int checked = 0; std::map<int, int> per_gesture; Score decide; };
 
-// The hands stage's known limit (hands README): with the user's hips out of view, a hand below the shoulders
-// within pose_gesture.cut_hand_margin box widths of the frame's bottom edge is not read, because BlazePose places
-// a hanging hand out of view there with the same landmarks (a false DOWN flown at rest). A DOWN the truth shows
-// so on most of its judged frames (the drone up after UP and a few metres off: tour and dark-skin, 1 run in 3-5)
-// is judged as an open finding. Measured on a tour run: its last DOWN so on 79 of 79 frames, its first on 0 of 80.
-bool down_at_the_cut_edge(const Recorded& r, size_t begin, size_t end, int64_t from) {
-  size_t n = 0, cut = 0;
-  for (size_t i = begin; i < end; ++i) {
-    const ground_truth_t& m = r.truth[i].m;
-    const auto track = r.tracks.find(m.seq);
-    if (r.truth[i].t < from || track == r.tracks.end() || track->second.image_height <= 0) continue;
-    const double bottom = track->second.image_height;
-    const double hips = 2.0 * m.body_centre[1] - m.shoulder_centre[1];
-    const double margin = PoseGestureParams{}.cut_hand_margin * m.user_box[2];
-    const auto at_edge = [&](const float* hand) { return hand[1] > m.shoulder_centre[1] && hand[1] > bottom - margin; };
-    ++n;
-    cut += hips > bottom && (at_edge(m.left_hand) || at_edge(m.right_hand));
-  }
-  return n > 0 && 2 * cut > n;
-}
-
 // Judges every true gesture long enough to act on that the camera can see (a gesture whose arm is out of view is
 // reported, not judged) on every frame from 0.8 s after it starts to its end (the decide stage reacts within
 // 0.5 s, median, and the flight stage's 0.3 s command spacing may hold a change a little longer).
@@ -293,8 +271,7 @@ Judged judge_gestures(const Recorded& r, double rest_drift_m, const std::vector<
                   dn, de, dd, range_a, range_b, old, n);
     std::fprintf(stderr, "judged %s\n", line);
     SCOPED_TRACE(line);
-    const bool cut_edge = gesture == ground_truth_t::GESTURE_DOWN && down_at_the_cut_edge(r, seg.begin, seg.end, from);
-    if (cut_edge || std::find(open_findings.begin(), open_findings.end(), gesture) != open_findings.end()) {
+    if (std::find(open_findings.begin(), open_findings.end(), gesture) != open_findings.end()) {
       // How far it flew the way asked: up, down, in, out (OUT and REST have no one way: never open findings).
       double asked = 0;
       switch (gesture) {
@@ -305,9 +282,7 @@ Judged judge_gestures(const Recorded& r, double rest_drift_m, const std::vector<
         default: ADD_FAILURE() << kGestureNames[gesture] << " cannot be an open finding: it has no one way to fly"; break;
       }
       EXPECT_GT(asked, -0.10) << "an open finding, but it flew the other way";
-      std::fprintf(stderr, "  %s: %s; judged only for not flying the other way\n",
-                   cut_edge ? "the hand at the bottom edge, the hips cut (the hands stage's known limit)" : "an open finding",
-                   asked > 0.10 ? "flown" : "not flown");
+      std::fprintf(stderr, "  an open finding: %s; judged only for not flying the other way\n", asked > 0.10 ? "flown" : "not flown");
       ++j.checked;
       ++j.per_gesture[gesture];
       continue;
@@ -544,7 +519,10 @@ INSTANTIATE_TEST_SUITE_P(
         // place the resting arm, against the sandstone wall, bent between the hips (both arms in front: no
         // command, a run closed in 0.07 m). Judged here only for not flying the other way. DOWN likewise (issue
         // 29, pose, as bystander's): under light 1.4 BlazePose scores the DOWN arm's wrist 0.27-0.35 visible, in
-        // plain view at 48-52 deg from down: no command, a fresh-clone run did not descend.
+        // plain view at 48-52 deg from down: no command, a fresh-clone run did not descend. Open finding (issue 29,
+        // pose): since the flight stage holds the climb with the user box's bottom at the frame's bottom, CLOSER
+        // comes with the hips in view, and under JPEG 25 BlazePose may place the hand held high 15-20 px low, below
+        // p_bc: FURTHER flew 0.30 m in 1 of 9 runs (a failure here: the wrong way).
         Scenario{"nuisances", 70, {G::GESTURE_REST, G::GESTURE_OUT}, 2, 0.20, 0.0, 0.0, "synthetic", false, "",
                  {G::GESTURE_UP, G::GESTURE_CLOSER, G::GESTURE_DOWN}},
         // Open finding (issue 29, pose): the UP arm flies faster than the DOWN arm (the speed follows the hand's
@@ -561,7 +539,8 @@ INSTANTIATE_TEST_SUITE_P(
         // search rectangle reached GESTURE_CMD as FINE in a few short episodes while the user rested. Open finding
         // (issue 29, pose): after UP (0.5 m climbed) the user stands at the frame's bottom, legs cut, and BlazePose
         // may score the DOWN arm's wrist 0.32, in plain view (a run did not descend): judged only for not flying
-        // the other way. The flight stage keeps the face in view, not yet the arms.
+        // the other way. The flight stage now stops climbing with the user box's bottom at the frame's bottom (in the
+        // one run since, DOWN flew 0.41 m with the hips 43 px above the edge).
         Scenario{"bystander", 72, {G::GESTURE_REST, G::GESTURE_OUT}, 4, 0.10, 0.95, 0.0, "synthetic", false, "",
                  {G::GESTURE_DOWN}},
         // Issue 30, the user found by the body alone: 9 m away from the start, the cascade as shot (no face below
