@@ -169,7 +169,7 @@ Setpoint FlightBridge::update(const BridgeInputs& in) {
     if (held) sp.reasons |= reason::kViewLimit;
   }
   if (params_.climb_view_box_ratio > 0 && t.image_height > 0 && sp.velocity[2] < 0 &&
-      t.box[1] + params_.climb_view_box_ratio * t.box[3] >= t.image_height) {  // the hips at the bottom: no climb
+      t.box[1] + params_.climb_view_box_ratio * t.box[3] >= t.image_height) {  // the hands at the bottom: no climb
     sp.velocity[2] = 0.0;
     sp.reasons |= reason::kViewLimit;
   }
