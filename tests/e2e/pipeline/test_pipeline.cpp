@@ -537,13 +537,11 @@ INSTANTIATE_TEST_SUITE_P(
         Scenario{"far", 76, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}, 0, 0.10, 0.95, 0.90},
         // Issue 13, the user, not a bystander: the track stays on the user through a look-alike walker crossing in
         // front and beside a waver. Open finding (hands, issue 13): the waver's raised hand inside the user's
-        // search rectangle reached GESTURE_CMD as FINE in a few short episodes while the user rested. Open finding
-        // (issue 29, pose): after UP (0.5 m climbed) the user stands at the frame's bottom, legs cut, and BlazePose
-        // may score the DOWN arm's wrist 0.32, in plain view (a run did not descend): judged only for not flying
-        // the other way. The flight stage now stops climbing with the user box's bottom at the frame's bottom (in the
-        // one run since, DOWN flew 0.41 m with the hips 43 px above the edge).
-        Scenario{"bystander", 72, {G::GESTURE_REST, G::GESTURE_OUT}, 4, 0.10, 0.95, 0.0, "synthetic", false, "",
-                 {G::GESTURE_DOWN}},
+        // search rectangle reached GESTURE_CMD as FINE in a few short episodes while the user rested. Issue 29:
+        // after UP (0.5 m climbed) the user stood at the frame's bottom, legs cut, and BlazePose could score the DOWN
+        // arm's wrist 0.32, in plain view (a run did not descend: an open finding); since the flight stage stops
+        // climbing with the user box's bottom at the frame's bottom, DOWN flew 0.41-0.46 m in 7 of 7 runs.
+        Scenario{"bystander", 72, {G::GESTURE_REST, G::GESTURE_OUT}, 4, 0.10, 0.95},
         // Issue 30, the user found by the body alone: 9 m away from the start, the cascade as shot (no face below
         // 20 px), the person search on (synthetic-body.yaml); every gesture there (>= 90 % right at 8-10 m).
         Scenario{"far-no-face", 50, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER}, 0, 0.10, 0.95, 0.90, "synthetic-body"},
