@@ -58,6 +58,15 @@ BridgeInputs ready(const GestureCommand& c) {
   return in;
 }
 
+// One update of a fresh bridge with params p, command c and the user box at y, h tall (the rest as ready's).
+Setpoint with_box(const FlightParams& p, const GestureCommand& c, double box_y, double box_h) {
+  FlightBridge b{p};
+  BridgeInputs in = ready(c);
+  in.track->box[1] = box_y;
+  in.track->box[3] = box_h;
+  return b.update(in);
+}
+
 TEST(FlightBridge, PointingToTheImageLeftFliesBodyLeft) {
   // Hand on the image's left (x < 0) = the user's right; camera -x = body -y (left of the drone).
   FlightBridge b{FlightParams{}};
@@ -153,21 +162,14 @@ TEST(FlightBridge, NoClosingInOnceTheUserFillsTheImage) {
                         Case{"closer, box 312 px", closer, 312, 0.0, true},
                         Case{"closer, box beyond the image", closer, 900, 0.0, true},
                         Case{"further, box 600 px", further, 600, -0.5, false}}) {
-    FlightBridge b{p};
-    BridgeInputs in = ready(k.c);
-    in.track->box[1] = 20;  // face band well inside the image: only the range limit can hold it
-    in.track->box[3] = k.box_h;
-    const Setpoint sp = b.update(in);
+    const Setpoint sp = with_box(p, k.c, 20, k.box_h);  // face band well inside: only the range limit can hold it
     EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
     EXPECT_EQ((sp.reasons & reason::kRangeLimit) != 0, k.held) << k.what;
     EXPECT_EQ(sp.reasons & reason::kViewLimit, 0) << k.what;
   }
   p.closest_box_height_ratio = 0;
   p.closest_hips_box_ratio = 0;  // a 900 px box has its hips below the image too
-  FlightBridge b{p};
-  BridgeInputs in = ready(closer);
-  in.track->box[3] = 900;
-  EXPECT_DOUBLE_EQ(b.update(in).velocity[0], 0.5) << "closest_box_height_ratio 0: no limit";
+  EXPECT_DOUBLE_EQ(with_box(p, closer, 100, 900).velocity[0], 0.5) << "closest_box_height_ratio 0: no limit";
 }
 
 TEST(FlightBridge, NoClosingInOnceTheUsersHipsReachTheImagesBottom) {
@@ -178,20 +180,12 @@ TEST(FlightBridge, NoClosingInOnceTheUsersHipsReachTheImagesBottom) {
                         Case{"closer, hips line at 480 px", closer, 270, 0.0, true},
                         Case{"closer, hips below the image", closer, 300, 0.0, true},
                         Case{"further, hips below the image", further, 300, -0.5, false}}) {
-    FlightBridge b{p};
-    BridgeInputs in = ready(k.c);
-    in.track->box[1] = k.box_y;  // 270 + 0.7 x 300 = 480
-    in.track->box[3] = 300;
-    const Setpoint sp = b.update(in);
+    const Setpoint sp = with_box(p, k.c, k.box_y, 300);  // 270 + 0.7 x 300 = 480
     EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
     EXPECT_EQ((sp.reasons & reason::kRangeLimit) != 0, k.held) << k.what;
   }
   p.closest_hips_box_ratio = 0;
-  FlightBridge b{p};
-  BridgeInputs in = ready(closer);
-  in.track->box[1] = 300;
-  in.track->box[3] = 300;
-  EXPECT_DOUBLE_EQ(b.update(in).velocity[0], 0.5) << "closest_hips_box_ratio 0: no limit";
+  EXPECT_DOUBLE_EQ(with_box(p, closer, 300, 300).velocity[0], 0.5) << "closest_hips_box_ratio 0: no limit";
 }
 
 TEST(FlightBridge, NoClimbingOnceTheUserBoxReachesTheImagesBottom) {
@@ -205,19 +199,13 @@ TEST(FlightBridge, NoClimbingOnceTheUserBoxReachesTheImagesBottom) {
                         Case{"climb, box below the image", up, 380, 0, 0.0, true},
                         Case{"descend, box below the image", down, 380, 0, 0.4, false},
                         Case{"sideways and up, box below the image", up_left, 380, -0.5, 0.0, true}}) {
-    FlightBridge b{p};
-    BridgeInputs in = ready(k.c);
-    in.track->box[1] = k.box_y;  // 230 + 250 = 480
-    const Setpoint sp = b.update(in);
+    const Setpoint sp = with_box(p, k.c, k.box_y, 250);  // 230 + 250 = 480
     EXPECT_DOUBLE_EQ(sp.velocity[1], k.vy) << k.what;
     EXPECT_DOUBLE_EQ(sp.velocity[2], k.vz) << k.what;
     EXPECT_EQ((sp.reasons & reason::kViewLimit) != 0, k.held) << k.what;
   }
   p.climb_view_box_ratio = 0;
-  FlightBridge b{p};
-  BridgeInputs in = ready(up);
-  in.track->box[1] = 380;
-  EXPECT_DOUBLE_EQ(b.update(in).velocity[2], -0.4) << "climb_view_box_ratio 0: no limit";
+  EXPECT_DOUBLE_EQ(with_box(p, up, 380, 250).velocity[2], -0.4) << "climb_view_box_ratio 0: no limit";
 }
 
 TEST(FlightBridge, SpeedIsClippedToTheLimitsAndSaysSo) {
