@@ -168,15 +168,16 @@ Setpoint FlightBridge::update(const BridgeInputs& in) {
     }
     if (held) sp.reasons |= reason::kViewLimit;
   }
-  // The user box's point `ratio` of its height below its top is at or below the image's bottom edge (0: never).
-  const auto at_bottom = [&t](double ratio) { return ratio > 0 && t.box[1] + ratio * t.box[3] >= t.image_height; };
-  if (t.image_height > 0 && sp.velocity[2] < 0 && at_bottom(params_.climb_view_box_ratio)) {  // hands cut: no climb
+  // The user box's point view_box_ratio of its height below its top is at or below the image's bottom edge: climbing
+  // or closing in would cut the hips and the hanging hands.
+  const bool at_bottom = t.image_height > 0 && params_.view_box_ratio > 0 &&
+                         t.box[1] + params_.view_box_ratio * t.box[3] >= t.image_height;
+  if (at_bottom && sp.velocity[2] < 0) {  // hands cut: no climb
     sp.velocity[2] = 0.0;
     sp.reasons |= reason::kViewLimit;
   }
   const bool fills_image = params_.closest_box_height_ratio > 0 && t.box[3] >= params_.closest_box_height_ratio * t.image_height;
-  const bool hips_at_bottom = at_bottom(params_.closest_hips_box_ratio);
-  if (t.image_height > 0 && sp.velocity[0] > 0 && (fills_image || hips_at_bottom)) {
+  if (t.image_height > 0 && sp.velocity[0] > 0 && (fills_image || at_bottom)) {
     sp.velocity[0] = 0.0;
     sp.reasons |= reason::kRangeLimit;
   }

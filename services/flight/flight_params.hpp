@@ -43,20 +43,17 @@ struct FlightParams {
   // projects onto the body centre (the pose method read it low on 16 of 129 frames below 2.2 m, and FURTHER
   // followed CLOSER when the hand was let go). Ours, not the paper's (its users stood further off); 0: off.
   double closest_box_height_ratio = 0.65;
-  // No closing in while the user box's hips, with a margin (this many box heights below the box's top: the preset
-  // box puts the hip joints at about 0.6), are at or below the image's bottom edge. The hands stage reads a hand
-  // in front against the hips: closer than that, seen from a drone above the user, FURTHER, the way back, could
-  // not be given (a closed-loop tour ended CLOSER at 2.2 m with the hips on the bottom edge, and FURTHER was no
-  // command for 4 s). Ours; 0 turns it off.
-  double closest_hips_box_ratio = 0.7;
-  // No climbing while the user box's point this many box heights below its top (1: the box's bottom, below the
-  // hanging hands) is at or below the image's bottom edge. Climbing moves the user down the image. With the hips
-  // and the hanging hands cut, BlazePose invents arms: after two UPs a closed-loop tour left the hips 12 px below
-  // the frame and a DOWN that followed was not flown (a hanging hand out of view is placed out and down at the
-  // edge: cut_hand_margin); held with the hips 25 px above the edge (0.9 of the box), a resting hand half cut by
-  // it was read raised: no DOWN and a false command at rest. Held, the drone still climbs about 0.08 box heights
-  // (the setpoint-to-motion lag and the track's). Ours; 0 turns it off.
-  double climb_view_box_ratio = 1.0;
+  // No climbing and no closing in while the user box's point this many box heights below its top (1: the box's
+  // bottom, below the hanging hands) is at or below the image's bottom edge. Both move the user down the image
+  // (the camera is fixed to the drone), and with the hips and the hanging hands cut BlazePose invents arms: after
+  // two UPs a closed-loop tour left the hips 12 px below the frame and a DOWN that followed was not flown (a
+  // hanging hand out of view is placed out and down at the edge: cut_hand_margin); held with the hips 25 px above
+  // the edge (0.9 of the box), a resting hand half cut by it was read raised: no DOWN and a false command at rest.
+  // A hand in front is read against the hips: a tour's CLOSER held only at the hips (0.7) ended at 2.3 m with the
+  // box's bottom 30 px below the frame and the hips placed 40 px too high: FURTHER, the way back, was read as a
+  // hand at rest, and the UP after it was held. Held, the drone still moves about 0.08 box heights (the
+  // setpoint-to-motion lag and the track's). Ours; 0 turns it off.
+  double view_box_ratio = 1.0;
   // With MAVLink, the autopilot's own offboard-loss failsafe (PX4 COM_OF_LOSS_T, ArduPilot GUID_TIMEOUT) is what
   // stops the vehicle when this process goes quiet: ENGAGE is refused unless the autopilot reports one no
   // longer than this.
@@ -85,10 +82,8 @@ struct FlightParams {
     v("face_band_ratio", face_band_ratio, 0.0, 1.0, "top fraction of the user box taken as the face band");
     v("closest_box_height_ratio", closest_box_height_ratio, 0.0, 10.0,
       "no closing in while the user box is this many image heights tall (0: no limit)");
-    v("closest_hips_box_ratio", closest_hips_box_ratio, 0.0, 2.0,
-      "no closing in while the point this many box heights below the user box's top is at the image's bottom (0: no limit)");
-    v("climb_view_box_ratio", climb_view_box_ratio, 0.0, 2.0,
-      "no climbing while the point this many box heights below the user box's top is at the image's bottom (0: no limit)");
+    v("view_box_ratio", view_box_ratio, 0.0, 2.0,
+      "no climbing, no closing in while the point this many box heights below the user box's top is at the image's bottom (0: no limit)");
     v("max_autopilot_loss_s", max_autopilot_loss_s, 0.0, 60.0,
       "MAVLink: refuse ENGAGE unless the autopilot's offboard-loss failsafe (COM_OF_LOSS_T/GUID_TIMEOUT) is <= this, s");
   }

@@ -528,7 +528,7 @@ INSTANTIATE_TEST_SUITE_P(
                  {G::GESTURE_UP, G::GESTURE_CLOSER, G::GESTURE_DOWN}},
         // Issue 29: the UP arm flies faster than the DOWN arm (the speed follows the hand's reach), so the drone is
         // above its start by CLOSER. Before the flight stage held the climb with the user box's bottom at the
-        // frame's bottom (flight.climb_view_box_ratio) that was 2.3 m up at 3.3 m, the hips on the bottom edge,
+        // frame's bottom (flight.view_box_ratio) that was 2.3 m up at 3.3 m, the hips on the bottom edge,
         // BlazePose scoring the dark forearm across the chest 0.2-0.45: CLOSER and FURTHER were missed in 3 of 5
         // runs (an open finding). With the hold, both flown in 10 of 10 runs (CLOSER 0.64-1.10 m, FURTHER 1.09-1.18 m).
         Scenario{"dark-skin", 70, {G::GESTURE_REST, G::GESTURE_OUT, G::GESTURE_UP, G::GESTURE_DOWN, G::GESTURE_CLOSER, G::GESTURE_FURTHER},

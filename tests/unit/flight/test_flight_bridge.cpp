@@ -123,7 +123,7 @@ TEST(FlightBridge, NoClimbAboveTheHeightBandNoDescentBelowIt) {
 
 TEST(FlightBridge, MotionsThatTakeTheFaceOutOfViewAreHeld) {
   FlightParams p;
-  p.climb_view_box_ratio = 0;  // a face at the bottom has the box below the image: only the face band here
+  p.view_box_ratio = 0;  // a face at the bottom has the box below the image: only the face band here
   GestureCommand down = fine(0.0, 0.4), up = fine(0.0, -0.4), side_down = fine(-0.5, 0.4);
   down.mode = GestureMode::Down;
   up.mode = GestureMode::Up;
@@ -168,44 +168,36 @@ TEST(FlightBridge, NoClosingInOnceTheUserFillsTheImage) {
     EXPECT_EQ(sp.reasons & reason::kViewLimit, 0) << k.what;
   }
   p.closest_box_height_ratio = 0;
-  p.closest_hips_box_ratio = 0;  // a 900 px box has its hips below the image too
+  p.view_box_ratio = 0;  // a 900 px box reaches below the image too
   EXPECT_DOUBLE_EQ(with_box(p, closer, 100, 900).velocity[0], 0.5) << "closest_box_height_ratio 0: no limit";
 }
 
-TEST(FlightBridge, NoClosingInOnceTheUsersHipsReachTheImagesBottom) {
-  FlightParams p;  // closest_hips_box_ratio 0.7; a 480 px image; boxes 300 px tall, below the 312 px range limit
-  const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
-  struct Case { const char* what; GestureCommand c; double box_y; double vx; bool held; };
-  for (const Case& k : {Case{"closer, hips line at 479 px", closer, 269, 0.5, false},
-                        Case{"closer, hips line at 480 px", closer, 270, 0.0, true},
-                        Case{"closer, hips below the image", closer, 300, 0.0, true},
-                        Case{"further, hips below the image", further, 300, -0.5, false}}) {
-    const Setpoint sp = with_box(p, k.c, k.box_y, 300);  // 270 + 0.7 x 300 = 480
-    EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
-    EXPECT_EQ((sp.reasons & reason::kRangeLimit) != 0, k.held) << k.what;
-  }
-  p.closest_hips_box_ratio = 0;
-  EXPECT_DOUBLE_EQ(with_box(p, closer, 300, 300).velocity[0], 0.5) << "closest_hips_box_ratio 0: no limit";
-}
-
-TEST(FlightBridge, NoClimbingOnceTheUserBoxReachesTheImagesBottom) {
-  FlightParams p;  // climb_view_box_ratio 1 (the box's bottom); a 480 px image; 250 px boxes, the face band inside
+TEST(FlightBridge, NoClimbingNorClosingInOnceTheUserBoxReachesTheImagesBottom) {
+  FlightParams p;  // view_box_ratio 1 (the box's bottom); a 480 px image; 250 px boxes, the face band inside and
+                   // below the 312 px range limit
   GestureCommand up = fine(0.0, -0.4), down = fine(0.0, 0.4), up_left = fine(-0.5, -0.4);
   up.mode = GestureMode::Up;
   down.mode = GestureMode::Down;
-  struct Case { const char* what; GestureCommand c; double box_y; double vy, vz; bool held; };
-  for (const Case& k : {Case{"climb, box bottom at 479 px", up, 229, 0, -0.4, false},
-                        Case{"climb, box bottom at 480 px", up, 230, 0, 0.0, true},
-                        Case{"climb, box below the image", up, 380, 0, 0.0, true},
-                        Case{"descend, box below the image", down, 380, 0, 0.4, false},
-                        Case{"sideways and up, box below the image", up_left, 380, -0.5, 0.0, true}}) {
+  const GestureCommand closer = with_mode(GestureMode::Closer, 1.0), further = with_mode(GestureMode::Further, -1.0);
+  struct Case { const char* what; GestureCommand c; double box_y; double vx, vy, vz; int32_t held; };
+  const int32_t view = reason::kViewLimit, range = reason::kRangeLimit;
+  for (const Case& k : {Case{"climb, box bottom at 479 px", up, 229, 0, 0, -0.4, 0},
+                        Case{"climb, box bottom at 480 px", up, 230, 0, 0, 0.0, view},
+                        Case{"climb, box below the image", up, 380, 0, 0, 0.0, view},
+                        Case{"descend, box below the image", down, 380, 0, 0, 0.4, 0},
+                        Case{"sideways and up, box below the image", up_left, 380, 0, -0.5, 0.0, view},
+                        Case{"closer, box bottom at 479 px", closer, 229, 0.5, 0, 0, 0},
+                        Case{"closer, box bottom at 480 px", closer, 230, 0.0, 0, 0, range},
+                        Case{"further, box below the image", further, 380, -0.5, 0, 0, 0}}) {
     const Setpoint sp = with_box(p, k.c, k.box_y, 250);  // 230 + 250 = 480
+    EXPECT_DOUBLE_EQ(sp.velocity[0], k.vx) << k.what;
     EXPECT_DOUBLE_EQ(sp.velocity[1], k.vy) << k.what;
     EXPECT_DOUBLE_EQ(sp.velocity[2], k.vz) << k.what;
-    EXPECT_EQ((sp.reasons & reason::kViewLimit) != 0, k.held) << k.what;
+    EXPECT_EQ(sp.reasons & (view | range), k.held) << k.what;
   }
-  p.climb_view_box_ratio = 0;
-  EXPECT_DOUBLE_EQ(with_box(p, up, 380, 250).velocity[2], -0.4) << "climb_view_box_ratio 0: no limit";
+  p.view_box_ratio = 0;
+  EXPECT_DOUBLE_EQ(with_box(p, up, 380, 250).velocity[2], -0.4) << "view_box_ratio 0: no limit";
+  EXPECT_DOUBLE_EQ(with_box(p, closer, 380, 250).velocity[0], 0.5) << "view_box_ratio 0: no limit";
 }
 
 TEST(FlightBridge, SpeedIsClippedToTheLimitsAndSaysSo) {
