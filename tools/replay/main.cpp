@@ -323,7 +323,11 @@ class ChainReplay {
       if (first_ts < 0) first_ts = ev->timestamp;
       const double t = (ev->timestamp - first_ts) * 1e-6;
       if (t < o_.from_s) continue;
-      if (o_.to_s > 0 && t > o_.to_s) break;
+      if (o_.to_s > 0 && t > o_.to_s) {
+        // Past the cut: no input is given, but a live output of an input before it may be logged after it.
+        if (o_.check && outputs_.count(ev->channel)) after_cut_[ev->channel].push_back(message_of(ev->data, static_cast<size_t>(ev->datalen)));
+        continue;
+      }
       ++n_events_;
       now_ts_ = ev->timestamp;
       node_.set_log_time(now_ts_);  // the stages' clock is the log's (BusNode::now)
@@ -348,7 +352,7 @@ class ChainReplay {
     int differences = 0;
     for (const auto& ch : outputs_) {
       const auto& a = produced_[ch];
-      const auto& b = recorded_[ch];
+      const auto& b = with_late_outputs(ch);
       std::printf("%-12s new %6zu  recorded %6zu", ch.c_str(), a.size(), b.size());
       if (!o_.check) {
         std::printf("\n");
@@ -476,7 +480,18 @@ class ChainReplay {
   std::vector<std::shared_ptr<void>> running_;
   std::unique_ptr<ReplayTicks> ticks_;
   std::unique_ptr<PairHold> pair_hold_;
-  std::map<std::string, std::vector<std::vector<uint8_t>>> produced_, recorded_;
+  // The recorded outputs of ch, and those logged after --to that the replay also gave (of inputs before the cut).
+  const std::vector<std::vector<uint8_t>>& with_late_outputs(const std::string& ch) {
+    std::vector<std::vector<uint8_t>>& b = recorded_[ch];
+    std::set<std::pair<int64_t, int64_t>> given;
+    for (const auto& m : produced_[ch]) given.emplace(utime_of(m), seq_of(m));
+    for (auto& m : after_cut_[ch])
+      if (given.count({utime_of(m), seq_of(m)})) b.push_back(std::move(m));
+    after_cut_[ch].clear();
+    return b;
+  }
+
+  std::map<std::string, std::vector<std::vector<uint8_t>>> produced_, recorded_, after_cut_;
   int64_t now_ts_ = 0, n_events_ = 0, n_inputs_ = 0;
   size_t next_init_ = 0;
   bool configs_written_ = false;
@@ -517,7 +532,7 @@ int main(int argc, char** argv) {
   cli.app().add_option("--out", o.out_path, "write the new log here");
   cli.app().add_flag("--check", o.check, "compare the new outputs with the recorded ones (exit 1 on any difference)");
   cli.app().add_option("--from", o.from_s, "start this many seconds after the log's first event")->check(CLI::NonNegativeNumber);
-  cli.app().add_option("--to", o.to_s, "stop this many seconds after the log's first event (0 = the end)")->check(CLI::NonNegativeNumber);
+  cli.app().add_option("--to", o.to_s, "stop this many seconds after the log's first event (0 = the end); --check finds the outputs of the inputs given after it too")->check(CLI::NonNegativeNumber);
   cli.app().add_flag("--inputs-only", o.inputs_only, "the new log holds only the stages' inputs and outputs (small logs)");
   cli.app().add_flag("--recorded-outputs", o.recorded_outputs,
                      "the new log holds the recorded outputs and the stages' logged CONFIG, not the replay's: a cut of\n"
