@@ -26,11 +26,15 @@ struct OneEuroParams {
 };
 
 // Landmark smoothing as pose_landmark_filtering.pbtxt: the 33 landmarks and, smoothed harder so the next crop
-// stays still, the two auxiliary points the next ROI is made from.
+// stays still, the two auxiliary points the next ROI is made from. Ours: the auxiliary points' beta 5, not
+// MediaPipe's 1 (the same at rest, a crop that follows a moving body 5 times sooner). With 1, a far figure's
+// (9.7 m, a 74 px box) arm raised for UP outran its crop: its hand came to the crop's top edge, the landmark model
+// read the arm folded, the folded arm kept the crop where it was, and UP was not flown for the whole gesture
+// (1 of 10 e2e `far` runs; replayed from its log, beta 3 or more reads the arm OUT on 80 of 80 frames).
 struct PoseSmoothingParams {
   bool enabled = true;
   OneEuroParams landmarks;                       //!< MediaPipe: 0.1 Hz, 40, 1 Hz
-  OneEuroParams aux{0.01, 1.0, 1.0};             //!< MediaPipe: 0.01 Hz, 1, 1 Hz
+  OneEuroParams aux{0.01, 5.0, 1.0};             //!< MediaPipe: 0.01 Hz, 1, 1 Hz; beta ours (above)
   double visibility_alpha = 0.1;                 //!< low-pass weight of a new visibility (MediaPipe 0.1; 1 = off)
   double first_rate_hz = 30.0;                   //!< assumed frame rate until two frames give it (MediaPipe's default)
 
