@@ -413,6 +413,17 @@ class ChainReplay {
     if ((replayed && o_.recorded_outputs) || (!replayed && !o_.inputs_only)) write(ev);
   }
 
+  // The recorded outputs of ch, and those logged after --to that the replay also gave (of inputs before the cut).
+  const std::vector<std::vector<uint8_t>>& with_late_outputs(const std::string& ch) {
+    std::vector<std::vector<uint8_t>>& b = recorded_[ch];
+    std::set<std::pair<int64_t, int64_t>> given;
+    for (const auto& m : produced_[ch]) given.emplace(utime_of(m), seq_of(m));
+    for (auto& m : after_cut_[ch])
+      if (given.count({utime_of(m), seq_of(m)})) b.push_back(std::move(m));
+    after_cut_[ch].clear();
+    return b;
+  }
+
   // What a live stage sent: kept to compare with; for a timer-driven stage, where its timer fired.
   void on_recorded_output(const lcm::LogEvent& ev) {
     recorded_[ev.channel].push_back(message_of(ev.data, static_cast<size_t>(ev.datalen)));
@@ -480,17 +491,6 @@ class ChainReplay {
   std::vector<std::shared_ptr<void>> running_;
   std::unique_ptr<ReplayTicks> ticks_;
   std::unique_ptr<PairHold> pair_hold_;
-  // The recorded outputs of ch, and those logged after --to that the replay also gave (of inputs before the cut).
-  const std::vector<std::vector<uint8_t>>& with_late_outputs(const std::string& ch) {
-    std::vector<std::vector<uint8_t>>& b = recorded_[ch];
-    std::set<std::pair<int64_t, int64_t>> given;
-    for (const auto& m : produced_[ch]) given.emplace(utime_of(m), seq_of(m));
-    for (auto& m : after_cut_[ch])
-      if (given.count({utime_of(m), seq_of(m)})) b.push_back(std::move(m));
-    after_cut_[ch].clear();
-    return b;
-  }
-
   std::map<std::string, std::vector<std::vector<uint8_t>>> produced_, recorded_, after_cut_;
   int64_t now_ts_ = 0, n_events_ = 0, n_inputs_ = 0;
   size_t next_init_ = 0;

@@ -6,44 +6,38 @@
 // same frames fold again (the control: the log still carries the case).
 #include <gtest/gtest.h>
 
-#include <map>
 #include <string>
-
-#include <lcm/lcm-cpp.hpp>
+#include <vector>
 
 #include "../pose/pose_test_models.hpp"
+#include "frame_matcher.hpp"
 #include "gpilot/hand_obs_t.hpp"
 #include "gpilot/image_t.hpp"
 #include "gpilot/user_track_t.hpp"
 #include "hands/hands_core_factory.hpp"
 #include "hands/hands_service.hpp"
+#include "log_reader.hpp"
 
 namespace gpilot {
 namespace {
 
-// The log's pairs through a fresh stage: per frame in log order, whether its observation was OUT.
+// The log's pairs (each CAMERA frame with the USER_TRACK of its seq, as gpilot-view matches them) through a fresh
+// stage, oldest first: per frame, whether its observation was OUT.
 std::vector<bool> out_frames(const HandsParams& params) {
-  const std::string path = std::string(GPILOT_TEST_LOGS) + "/far-raised-arm.lcmlog";
-  lcm::LogFile log(path, "r");
-  EXPECT_TRUE(log.good()) << path;
+  LogReader log(std::string(GPILOT_TEST_LOGS) + "/far-raised-arm.lcmlog");
+  FrameMatcher matcher;
+  LogDispatcher dispatch;
+  dispatch.on<image_t>("CAMERA", [&](const image_t& m, int64_t) { matcher.add_frame(m); });
+  dispatch.on<user_track_t>("USER_TRACK", [&](const user_track_t& m, int64_t) { matcher.add(m); });
+  for (LogEvent ev; log.next(ev);) dispatch.dispatch(ev);
+  EXPECT_EQ(dispatch.rejected_total(), 0) << dispatch.last_reject_reason();
   const auto method = make_hand_method(params);
-  std::map<int64_t, image_t> frames;
   std::vector<bool> out;
-  for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent()) {
-    if (ev->channel == "CAMERA") {
-      image_t f;
-      if (f.decode(ev->data, 0, ev->datalen) > 0) frames[f.seq] = f;
-    } else if (ev->channel == "USER_TRACK") {
-      user_track_t t;
-      if (t.decode(ev->data, 0, ev->datalen) <= 0) continue;
-      const auto f = frames.find(t.seq);
-      if (f == frames.end()) continue;
-      hand_obs_t obs;
-      const std::string why = hands_on_pair(*method, f->second, t, ImageLimits{}, obs);
-      EXPECT_EQ(why, "") << "seq " << t.seq;
-      out.push_back(obs.kind == hand_obs_t::KIND_OUT);
-      frames.erase(frames.begin(), std::next(f));
-    }
+  for (const MatchedFrame& f : matcher.flush()) {
+    if (!f.msgs.track) continue;  // a frame the live tracker skipped
+    hand_obs_t obs;
+    EXPECT_EQ(hands_on_pair(*method, f.image, *f.msgs.track, ImageLimits{}, obs), "") << "seq " << f.image.seq;
+    out.push_back(obs.kind == hand_obs_t::KIND_OUT);
   }
   return out;
 }
