@@ -135,6 +135,7 @@ std::string check_message(const tracker_init_t& m) {
 std::string check_message(const user_track_t& m) {
   return first({check_enum("status", m.status, user_track_t::STATUS_SEARCHING, user_track_t::STATUS_LOST),
                 check_enum("init_source", m.init_source, user_track_t::INIT_NONE, user_track_t::INIT_PERSON),
+                check_enum("facing", m.facing, user_track_t::FACING_UNKNOWN, user_track_t::FACING_AWAY),
                 Finite()("box", m.box, 4)("confidence", m.confidence)("face_box", m.face_box, 4).reason,
                 check_box("box", m.box), check_box("face_box", m.face_box),
                 check_image_size(m.image_width, m.image_height),

@@ -58,8 +58,15 @@ std::string observe(HandMethod& method, const image_t& frame, const user_track_t
     user.face = cv::Rect2f(track.face_box[0], track.face_box[1], track.face_box[2], track.face_box[3]);
   user.track_id = track.track_id;
   user.tracking = track.status == user_track_t::STATUS_TRACKING;
-  const HandsOutput r = method.observe(bgr, user, frame.utime);
+  HandsOutput r = method.observe(bgr, user, frame.utime);
   if (!r.refused.empty()) return r.refused;
+  if (track.facing == user_track_t::FACING_AWAY) {
+    // The paper's user faces the drone: one the tracker finds turned away gives no command, whatever the arms
+    // do (BlazePose reads a back view as a front one). The pose is still read and goes out with it.
+    r.kind = HandKind::None;
+    r.vector = cv::Point2f(0, 0);
+    r.hand_box = cv::Rect();
+  }
   copy_rect(obs.user_box, r.user_box);
   obs.shoulder_centre[0] = r.shoulder_centre.x;
   obs.shoulder_centre[1] = r.shoulder_centre.y;

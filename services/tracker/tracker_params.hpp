@@ -378,6 +378,15 @@ struct TrackerParams {
   // took the walker back as the user (their torso, showing both shirts, matched the user's clothes 0.52, the gate
   // 0.5). A torso with more of the walker's shirt than the user's is then the walker's: LOST, refused.
   bool recheck_other_clothes = true;
+  // The paper's user faces the drone; a user who turned their back may still stretch out an arm (pointing
+  // something out to someone), and BlazePose reads a back view as a front one (hands README). A user whose
+  // face the cascade has found before (at the track's start or a re-check), missed at away_misses re-checks in
+  // a row where a face of at least away_min_face_px should be (the cascade finds the synthetic user's face as
+  // shot to 4.5 m at 640x480, 23 px: TrackerRange), is turned away (user_track_t.FACING_AWAY): the hands stage
+  // reads no command from them. After a miss the face is re-checked again after weak_recheck_frames, so a
+  // user who turns back is seen within a few frames. 0: off.
+  int away_misses = 2;
+  double away_min_face_px = 24.0;
   double torso_colour_rate = 0.2;
   int torso_colour_bins = 8;
   double torso_dark_level = 20.0;
@@ -412,6 +421,8 @@ struct TrackerParams {
     v("user_memory_frames", user_memory_frames, 0, 1000000, "frames SEARCHING during which a face must still wear the lost user's clothes (0 = any face)");
     v("weak_recheck_frames", weak_recheck_frames, 1, 100000, "a track that knows the user's clothes is re-checked this often while PSR < weak_recheck_psr, frames");
     v("weak_recheck_psr", weak_recheck_psr, 0.0, 1000.0, "PSR below which such a track is re-checked every weak_recheck_frames (0: never early)");
+    v("away_misses", away_misses, 0, 1000, "a user whose face was found before, missed at this many re-checks in a row: turned away, no command read (0: off)");
+    v("away_min_face_px", away_min_face_px, 0.0, 1000.0, "... only where the face the box expects is at least this wide, pixels (smaller: facing unknown)");
     v("recheck_other_clothes", recheck_other_clothes, "a torso more like the clothes last found in the user's place than the user's is not the user's");
     v("torso_colour_rate", torso_colour_rate, 0.0, 1.0, "blend rate of the track's torso colours at each matching re-check");
     v("torso_colour_bins", torso_colour_bins, 2, 64, "torso colours: chromaticity bins per axis");

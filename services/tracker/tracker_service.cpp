@@ -41,6 +41,7 @@ user_track_t to_message(const TrackOutput& t, const image_t& frame) {
     m.face_box[3] = static_cast<float>(t.face->height);
   }
   m.init_source = static_cast<int8_t>(t.init);
+  m.facing = static_cast<int8_t>(t.facing);
   m.track_id = t.track_id;
   m.image_width = frame.width;
   m.image_height = frame.height;
@@ -124,9 +125,10 @@ std::shared_ptr<void> start_tracker_service(const gpilot::Config& config, gpilot
     cost.add(!was_tracking, tracker.person_ran(), gpilot::monotonic_utime() - t0);
     publish(node, tracker_channels::kUserTrack, to_message(out, msg));
     tracker.finish(frame);  // the face re-check, after the frame's track is out
-    std::string detail = out.status == gpilot::TrackStatus::kTracking ? "tracking"
-                         : out.status == gpilot::TrackStatus::kLost   ? "user lost: searching for a face"
-                                                                      : "searching for a face";
+    std::string detail = out.status == gpilot::TrackStatus::kTracking
+                             ? (out.facing == gpilot::Facing::kAway ? "tracking, the user turned away (no command)" : "tracking")
+                         : out.status == gpilot::TrackStatus::kLost ? "user lost: searching for a face"
+                                                                    : "searching for a face";
     // Faces found but not started on (their body box failed the image check), counted by reason.
     std::string refused;
     for (int r = 1; r < gpilot::kFaceRefusals; ++r) {

@@ -87,6 +87,9 @@ void UserTracker::reset() {
   recheck_psr_.reset();
   recheck_face_.reset();
   resize_pending_ = false;
+  out_.facing = Facing::kUnknown;
+  away_misses_ = 0;
+  face_seen_ = false;
   bad_frames_ = 0;
   searches_ = 0;
   torso_colours_.clear();  // whoever comes is the user (RESET: a new user)
@@ -128,7 +131,10 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   if (new_track) {
     face_misses_ = 0;
     resize_pending_ = false;
+    away_misses_ = 0;
+    out_.facing = source == InitSource::kFace ? Facing::kToward : Facing::kUnknown;
   }
+  if (source == InitSource::kFace) face_seen_ = true;
 }
 
 // The face as published: clipped to the frame (a downscaled search can put its edge up to a pixel outside).
@@ -199,6 +205,24 @@ UserTracker::FaceCheck UserTracker::missed_face(const cv::Mat& frame, FaceCheck 
   other_clothes_ = torso_seen(frame, face);
   ++off_user_;
   return FaceCheck::OffUser;
+}
+
+// Turned away or not, by the re-check. Only a face the cascade has found on this user before, and of a size it
+// finds (away_min_face_px), is missed: a far user, or one whose face it never found (masked, in poor light,
+// started by the body), is kUnknown, not kAway.
+void UserTracker::update_facing(FaceCheck check, double expected_face_width) {
+  if (check == FaceCheck::Found) {
+    face_seen_ = true;
+    away_misses_ = 0;
+    out_.facing = Facing::kToward;
+  } else if (check == FaceCheck::Missed) {
+    if (p_.away_misses > 0 && face_seen_ && expected_face_width >= p_.away_min_face_px) {
+      if (++away_misses_ >= p_.away_misses) out_.facing = Facing::kAway;
+    } else {
+      away_misses_ = 0;
+      out_.facing = Facing::kUnknown;
+    }
+  }  // out of view: neither; Other, OffUser: the track is lost
 }
 
 std::vector<float> UserTracker::torso_seen(const cv::Mat& frame, const cv::Rect2d& face) const {
@@ -418,6 +442,7 @@ bool UserTracker::search_person(const cv::Mat& frame, bool remembered) {
   track_body_ = fit.body;
   start(frame, fit.box, InitSource::kPerson);
   set_user_clothes(frame, face);
+  face_seen_ = false;  // a new user, by the body: whether the cascade finds their face is not known yet
   ++person_counters_.started;
   person_misses_ = 0;
   faces_.restart_scan();
@@ -460,9 +485,11 @@ void UserTracker::track_frame(const cv::Mat& frame) {
   const cv::Rect2d face = face_from_body(out_.box, track_body_);
   const bool at_edge = (face & cv::Rect2d(0, 0, frame.cols, frame.rows)) != face;
   const bool weak = (e.psr < p_.weak_recheck_psr || at_edge) && !torso_colours_.empty() && p_.recheck_min_torso_match > 0;
+  // A user whose face was just missed is looked at again soon: turned away, or back toward the drone.
+  const bool soon = weak || resize_pending_ || away_misses_ > 0;
   ++frames_since_face_;
   if (p_.face_recheck_frames > 0 &&
-      (frames_since_face_ >= p_.face_recheck_frames || ((weak || resize_pending_) && frames_since_face_ >= p_.weak_recheck_frames)))
+      (frames_since_face_ >= p_.face_recheck_frames || (soon && frames_since_face_ >= p_.weak_recheck_frames)))
     recheck_psr_ = e.psr;  // finish() re-checks this frame's face, after its output is out
 }
 
@@ -473,7 +500,9 @@ void UserTracker::finish(const cv::Mat& frame) {
   if (out_.status != TrackStatus::kTracking || frame.size() != frame_size_) return;
   // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
   // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
+  const double expected_face_width = out_.box.width / track_body_.width_in_faces;
   const FaceCheck check = recheck_face(frame);
+  update_facing(check, expected_face_width);
   if (out_.face) {
     // Published with the next frame, moved as the track moves from this one (the box as re-anchored) to it.
     recheck_face_ = RecheckFace{*out_.face, out_.box, out_.track_id};
@@ -520,6 +549,7 @@ void UserTracker::lost_frame(const cv::Mat& frame) {
     // The last box is too old to search near or to re-detect from: the face search alone, on the whole frame.
     out_.status = TrackStatus::kSearching;
     out_.box = cv::Rect2d();
+    out_.facing = Facing::kUnknown;
     searches_ = 0;
   }
 }
@@ -550,6 +580,7 @@ const TrackOutput& UserTracker::track(const cv::Mat& frame) {
     pending_box_.reset();
     if (box.width >= 2 && box.height >= 2) {
       track_body_ = p_.body();  // a manual box's face re-check uses the preset ratios
+      face_seen_ = false;
       torso_colours_.clear();   // and knows no clothes: its re-check is not gated by them
       other_clothes_.clear();
       start(frame, box, InitSource::kManual);

@@ -27,6 +27,8 @@ namespace gpilot {
 
 enum class TrackStatus { kSearching = 0, kTracking = 1, kLost = 2 };
 enum class InitSource { kNone = 0, kFace = 1, kManual = 2, kPerson = 3 };
+//! Whether the user faces the drone, by the face re-check (user_track_t.facing).
+enum class Facing { kUnknown = 0, kToward = 1, kAway = 2 };
 
 //! What the person search (tracker.person) did since construction (HEALTH).
 struct PersonSearchCounters {
@@ -44,6 +46,10 @@ struct TrackOutput {
   cv::Rect2d box;           //!< body box, pixels (TRACKING: current; LOST: last good; SEARCHING: empty)
   double confidence = 0.0;  //!< PSR of this frame's translation response (0 while searching)
   InitSource init = InitSource::kNone;
+  //! kAway: a face the cascade found on this user before, of a size it finds (away_min_face_px), missed at the
+  //! last away_misses re-checks in a row; kToward: found at the last re-check; else kUnknown. From the frame
+  //! after the re-check on, like the face.
+  Facing facing = Facing::kUnknown;
   int track_id = 0;         //!< +1 per started track; 0 before the first
   //! The face the cascade found (pixels, inside the frame): in THIS frame on the frame a track starts from a
   //! face; in the frame before, moved as the track moved, on the frame after each re-check that found it
@@ -115,6 +121,7 @@ class UserTracker {
   enum class FaceCheck { Found, Missed, OutOfView, Other, OffUser };
   FaceCheck recheck_face(const cv::Mat& frame);
   FaceCheck missed_face(const cv::Mat& frame, FaceCheck users);
+  void update_facing(FaceCheck check, double expected_face_width);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
   std::vector<float> torso_seen(const cv::Mat& frame, const cv::Rect2d& face) const;
   void set_user_clothes(const cv::Mat& frame, const cv::Rect2d& face);
@@ -137,6 +144,8 @@ class UserTracker {
   int frames_since_face_ = 0;
   bool resize_pending_ = false;  //!< the last re-check's resize was cut to face_recheck_max_step: re-check soon
   int face_misses_ = 0;
+  int away_misses_ = 0;        //!< re-checks in a row that missed a face of a size the cascade finds (facing)
+  bool face_seen_ = false;     //!< the cascade has found this user's face (start or re-check) since they were taken
   int lost_for_ = 0;           //!< frames since the track was lost (LOST, then SEARCHING: user_memory_frames)
   int redetect_hits_ = 0;      //!< LOST frames in a row where the last good filter's PSR was >= redetect_psr
   bool redetect_ok_ = false;   //!< the last good filter may re-find the target (not after a face-miss loss)

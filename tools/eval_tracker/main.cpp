@@ -92,6 +92,7 @@ class UserTrackerRunner : public Runner {
     const TrackOutput o = t_.process(frame);
     psr.push_back(o.confidence);
     state = o.status == TrackStatus::kTracking ? "tracking" : o.status == TrackStatus::kLost ? "lost" : "searching";
+    if (o.facing != Facing::kUnknown) state += o.facing == Facing::kAway ? " away" : " toward";
     if (o.status != TrackStatus::kTracking) return std::nullopt;
     return o.box;
   }
@@ -463,7 +464,7 @@ int main(int argc, char** argv) {
   app.add_flag("--compare", compare, "also run OpenCV CSRT, KCF, MOSSE and dlib correlation_tracker on the same frames");
   app.add_flag("--json", json, "print one JSON object on stdout");
   app.add_option("--plot", plot, "write the success plot to this PNG");
-  app.add_option("--trace", trace, "write every frame's truth, each tracker's box and IoU, and our state and PSR to this CSV");
+  app.add_option("--trace", trace, "write every frame's truth, each tracker's box and IoU, and our state (and whether the user faces the drone) and PSR to this CSV");
   app.add_option("--repeat", repeat, "run each tracker over the sequence this many times: its speed is the median pass's "
                  "(a short clip's time is noisy)")->check(CLI::Range(1, 100));
   app.add_option("--threads", threads, "OpenCV threads (default 1: the cost on one core; times are thread CPU time)");

@@ -226,6 +226,7 @@ cv::Mat draw_overlay(const cv::Mat& frame, int64_t seq, const FrameMessages& m, 
     const cv::Rect box = to_rect(m.track->box);
     cv::rectangle(img, box, lost ? kLostAmber : kMarkRed, t, cv::LINE_8);
     std::string label = lost ? "LOST" : (m.cmd ? mode_name(m.cmd->mode) : "");
+    if (!lost && m.track->facing == user_track_t::FACING_AWAY) label += label.empty() ? "TURNED AWAY" : " (turned away)";
     if (!label.empty())
       cv::putText(img, label, cv::Point(box.x + t, std::max(12, box.y - 2 * t)), kFont, scale,
                   lost ? kLostAmber : kMarkRed, 1, cv::LINE_AA);

@@ -86,6 +86,23 @@ TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
   EXPECT_EQ(check_message(hl), "cpu_s -1 is negative");
 }
 
+TEST(MessageChecks, UserTrackFacingIsOneOfItsConstants) {
+  user_track_t t{};
+  t.status = user_track_t::STATUS_TRACKING;
+  t.image_width = 640;
+  t.image_height = 480;
+  const float body[4] = {100, 50, 200, 400};
+  std::copy(body, body + 4, t.box);
+  for (int8_t f : {user_track_t::FACING_UNKNOWN, user_track_t::FACING_TOWARD, user_track_t::FACING_AWAY}) {
+    t.facing = f;
+    EXPECT_EQ(check_message(t), "") << int(f);
+  }
+  t.facing = 3;
+  EXPECT_NE(check_message(t).find("facing"), std::string::npos) << check_message(t);
+  t.facing = -1;
+  EXPECT_NE(check_message(t).find("facing"), std::string::npos) << check_message(t);
+}
+
 TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
   user_track_t t{};
   t.status = user_track_t::STATUS_TRACKING;

@@ -1,6 +1,7 @@
 // One body box from the tracker to decide: HAND_OBS's user box is USER_TRACK's, and its shoulder centre, body
 // centre, hand square and vector are measured on that box, also on a frame with a face whose preset head-body
-// ratios would make another box; decide normalises by that box's width.
+// ratios would make another box; decide normalises by that box's width. A user the tracker finds turned away
+// gives no command.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,6 +68,20 @@ TEST(HandObsBox, GivenAFaceWhoseFittedRatiosDifferFromThePresetWhenObservedThenA
   EXPECT_GE(obs.hand_box[0] + side / 2, 230);
   // AND decide's speed is the vector over that box's width
   EXPECT_EQ(to_hand_observation(obs).user_box_width, track.box[2]);
+
+  // AND the same pair from a user the tracker finds turned away (user_track_t.facing) gives no command: the
+  // paper's user faces the drone
+  track.facing = user_track_t::FACING_AWAY;
+  ASSERT_EQ(hands_on_pair(*method, image, track, ImageLimits{}, obs), "");
+  EXPECT_EQ(obs.kind, hand_obs_t::KIND_NONE);
+  EXPECT_EQ(obs.vector[0], 0.0f);
+  EXPECT_EQ(obs.vector[1], 0.0f);
+  EXPECT_EQ(obs.hand_box[2], 0.0f);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(obs.user_box[i], track.box[i]);
+  // AND facing it again, the arm is OUT again
+  track.facing = user_track_t::FACING_TOWARD;
+  ASSERT_EQ(hands_on_pair(*method, image, track, ImageLimits{}, obs), "");
+  EXPECT_EQ(obs.kind, hand_obs_t::KIND_OUT);
 }
 
 }  // namespace

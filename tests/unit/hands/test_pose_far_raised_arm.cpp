@@ -3,7 +3,9 @@
 // live HAND_OBS beside them). Live, with the auxiliary points smoothed as MediaPipe does (beta 1), the arm read
 // folded from 1.6 s into the cut to its end and UP was not flown. Through the stage's own pair step
 // (hands_on_pair) with the defaults the raised arm is OUT on every frame it is up; with MediaPipe's beta the
-// same frames fold again (the control: the log still carries the case).
+// same frames fold again (the control: the log still carries the case). Its USER_TRACK messages were rewritten
+// to the layout with `facing` (FACING_UNKNOWN: the tracker that recorded them had no such field, and at 9.7 m
+// the face is below tracker.away_min_face_px, where the tracker says UNKNOWN or TOWARD, never AWAY).
 #include <gtest/gtest.h>
 
 #include <string>

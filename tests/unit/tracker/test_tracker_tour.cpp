@@ -114,8 +114,10 @@ TEST(TrackerTour, FaceRecheckKeepsTheScaleWithTheBodyOverflowingTheImage) {
 // From frame 50 the user's face is hidden (a flat patch over it: turned away, a hand or a hat over it): DSST
 // still follows the body, PSR stays high. A face the re-check cannot find is no evidence of loss by itself
 // (a drone's view from above, a user turned away): the track holds. Only with the filter's own evidence (PSR
-// below face_miss_psr at the re-check) do face_recheck_misses misses in a row (3 s) make it LOST; here every
-// miss is made to count (face_miss_psr huge) to show that path. -1: never lost. The person search is off: it
+// below face_miss_psr at the re-check) do face_recheck_misses misses in a row make it LOST; here every miss is
+// made to count (face_miss_psr huge) to show that path. A missed face is looked for again after
+// weak_recheck_frames (a user turning away or back: away_misses), so the misses come 3 frames apart after the
+// first. -1: never lost. The person search is off: it
 // would take the user's body back on the frame the track is lost (PersonSearch.*).
 int frames_until_lost(int face_recheck_misses, double face_miss_psr) {
   const SyntheticParams sp;
@@ -153,10 +155,12 @@ TEST(TrackerTour, FaceHiddenIsNoEvidenceOfLossWhileTheFilterIsSure) {
 }
 
 TEST(TrackerTour, FaceMissesWithWeakEvidenceMakeTheTrackLost) {
-  const int lost_after = frames_until_lost(TrackerParams{}.face_recheck_misses, 1000.0);
+  const TrackerParams p;
+  const int lost_after = frames_until_lost(p.face_recheck_misses, 1000.0);
   std::printf("lost %d frames after the face was hidden, every miss counting\n", lost_after);
-  EXPECT_GE(lost_after, 2 * 25) << "lost before three re-checks";
-  EXPECT_LE(lost_after, 4 * 25) << "still TRACKING with the face hidden";
+  // The first re-check with the face hidden within face_recheck_frames, the next misses weak_recheck_frames apart.
+  EXPECT_GE(lost_after, (p.face_recheck_misses - 1) * p.weak_recheck_frames) << "lost before three re-checks";
+  EXPECT_LE(lost_after, p.face_recheck_frames + p.face_recheck_misses * p.weak_recheck_frames) << "still TRACKING with the face hidden";
 }
 
 // USER_TRACK's face box (TrackOutput::face), for the hands stage to learn the user's skin from. The idle user,
