@@ -118,6 +118,7 @@ void RunAnalyzer::on_track(const user_track_t& m, int64_t) {
   ++track_frames_;
   note_seq("USER_TRACK", false, "", m.seq);
   if (m.status >= 0 && m.status < 3) ++track_by_status_[static_cast<size_t>(m.status)];
+  if (m.status == user_track_t::STATUS_TRACKING && m.facing == user_track_t::FACING_AWAY) ++track_turned_away_;
   track_box_by_seq_[m.seq] = {m.status, {m.box[0], m.box[1], m.box[2], m.box[3]}, m.image_width, m.image_height};
 }
 
@@ -194,6 +195,7 @@ Summary RunAnalyzer::summary() const {
   s.commands = commands_;
   s.track_frames = track_frames_;
   s.track_by_status = track_by_status_;
+  s.track_turned_away = track_turned_away_;
   s.latency_cmd = latency(lat_cmd_);
   s.latency_setpoint = latency(lat_sp_);
   s.pipeline_cmd = latency(pipe_cmd_);
@@ -326,6 +328,7 @@ json summary_json(const Summary& s, const json& extra) {
   j["commands"] = {{"total", s.commands}, {"by_mode", by_mode}};
   json track = {{"frames", s.track_frames}};
   for (int st = 0; st < 3; ++st) track[track_status_name(st)] = s.track_by_status[static_cast<size_t>(st)];
+  track["TRACKING_turned_away"] = s.track_turned_away;
   j["track"] = track;
   json stages = json::object();
   for (const auto& h : s.stages)
@@ -452,8 +455,9 @@ std::string summary_table(const Summary& s) {
   line("commands          %lld:", static_cast<long long>(s.commands));
   for (int m = 0; m < kModes; ++m) line(" %s %lld", mode_name(m), static_cast<long long>(s.commands_by_mode[static_cast<size_t>(m)]));
   t += "\n";
-  line("track             %lld frames: TRACKING %lld, LOST %lld, SEARCHING %lld\n", static_cast<long long>(s.track_frames),
-       static_cast<long long>(s.track_by_status[1]), static_cast<long long>(s.track_by_status[2]),
+  line("track             %lld frames: TRACKING %lld (the user turned away on %lld), LOST %lld, SEARCHING %lld\n",
+       static_cast<long long>(s.track_frames), static_cast<long long>(s.track_by_status[1]),
+       static_cast<long long>(s.track_turned_away), static_cast<long long>(s.track_by_status[2]),
        static_cast<long long>(s.track_by_status[0]));
   auto lat = [&](const char* name, const LatencyStats& l) {
     if (l.n)

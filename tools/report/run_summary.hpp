@@ -127,6 +127,7 @@ struct Summary {
   int64_t commands = 0;
   int64_t track_frames = 0;                       // USER_TRACK messages
   std::array<int64_t, 3> track_by_status{};       // SEARCHING, TRACKING, LOST
+  int64_t track_turned_away = 0;                  // TRACKING with the user turned away (no command read)
   std::vector<StageHealth> stages;                // by name
   LatencyStats latency_cmd, latency_setpoint;     // receipt - frame utime
   LatencyStats pipeline_cmd, pipeline_setpoint;   // receipt - CAMERA receipt (both on the logger's clock)
@@ -199,6 +200,7 @@ class RunAnalyzer {
   std::array<int64_t, kModes> commands_by_mode_{};
   int64_t commands_ = 0, unmatched_ = 0;
   std::array<int64_t, 3> track_by_status_{};
+  int64_t track_turned_away_ = 0;
   int64_t track_frames_ = 0;
   std::vector<int64_t> lat_cmd_, lat_sp_, pipe_cmd_, pipe_sp_;
   std::map<int64_t, bool> setpoint_seen_;

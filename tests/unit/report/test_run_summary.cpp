@@ -40,7 +40,13 @@ TEST_F(RunSummaryTest, CountsFramesCommandsAndTrack) {
   EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_CLOSER], 18);
   EXPECT_EQ(s.commands_by_mode[gesture_cmd_t::MODE_FURTHER], 1);
   EXPECT_EQ(s.track_by_status[user_track_t::STATUS_TRACKING], 100);
+  EXPECT_EQ(s.track_turned_away, 0);
   EXPECT_EQ(s.vehicle_states, 100);
+}
+
+TEST_F(RunSummaryTest, CountsTheTrackingFramesWithTheUserTurnedAway) {
+  run.facing = [](int64_t seq) { return seq >= 60 && seq < 75 ? user_track_t::FACING_AWAY : user_track_t::FACING_TOWARD; };
+  EXPECT_EQ(analyse(run, 60).track_turned_away, 15);
 }
 
 TEST_F(RunSummaryTest, LatenciesAreReceiptMinusFrameTimeMatchedBySeq) {

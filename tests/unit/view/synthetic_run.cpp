@@ -61,6 +61,7 @@ user_track_t track_of(const SyntheticRun& run, int64_t seq) {
   t.box[3] = b.height;
   t.confidence = 9.5f;
   t.init_source = user_track_t::INIT_FACE;
+  t.facing = run.facing(seq);
   t.track_id = 1;
   t.image_width = run.size.width;
   t.image_height = run.size.height;

@@ -32,6 +32,8 @@ struct SyntheticRun {
     return s < 50 ? gesture_cmd_t::MODE_FINE : gesture_cmd_t::MODE_CLOSER;
   };
   std::function<int8_t(int64_t)> decided_mode = default_decided;
+  // USER_TRACK.facing of frame seq.
+  std::function<int8_t(int64_t)> facing = [](int64_t) { return user_track_t::FACING_TOWARD; };
   // Receipt time of the frame's GESTURE_CMD minus its utime; FLIGHT_SETPOINT follows 5 ms later.
   std::function<int64_t(int64_t)> cmd_latency_us = [](int64_t s) { return 70000 + (s % 10) * 1000; };
   bool with_truth = true;
