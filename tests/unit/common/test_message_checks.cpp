@@ -86,13 +86,20 @@ TEST(MessageChecks, NanAndUnknownEnumsAreRejected) {
   EXPECT_EQ(check_message(hl), "cpu_s -1 is negative");
 }
 
-TEST(MessageChecks, UserTrackFacingIsOneOfItsConstants) {
+constexpr float kBody[4] = {100, 50, 200, 400};  // a body box in a 640x480 frame
+
+// A valid USER_TRACK: tracking kBody.
+user_track_t tracking_user() {
   user_track_t t{};
   t.status = user_track_t::STATUS_TRACKING;
   t.image_width = 640;
   t.image_height = 480;
-  const float body[4] = {100, 50, 200, 400};
-  std::copy(body, body + 4, t.box);
+  std::copy(kBody, kBody + 4, t.box);
+  return t;
+}
+
+TEST(MessageChecks, UserTrackFacingIsOneOfItsConstants) {
+  user_track_t t = tracking_user();
   for (int8_t f : {user_track_t::FACING_UNKNOWN, user_track_t::FACING_TOWARD, user_track_t::FACING_AWAY}) {
     t.facing = f;
     EXPECT_EQ(check_message(t), "") << int(f);
@@ -104,12 +111,7 @@ TEST(MessageChecks, UserTrackFacingIsOneOfItsConstants) {
 }
 
 TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
-  user_track_t t{};
-  t.status = user_track_t::STATUS_TRACKING;
-  t.image_width = 640;
-  t.image_height = 480;
-  const float body[4] = {100, 50, 200, 400};
-  std::copy(body, body + 4, t.box);
+  user_track_t t = tracking_user();
   // GIVEN no face in this frame (all zero): fine
   EXPECT_EQ(check_message(t), "");
   // and a face inside the image, up to its edges: fine
@@ -149,12 +151,7 @@ TEST(MessageChecks, UserTrackFaceBoxIsAllZeroOrAFiniteBoxInsideTheImage) {
 
 // The finite but absurd values, each rejected by its field before any stage sizes or divides by it.
 TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
-  user_track_t t{};
-  t.status = user_track_t::STATUS_TRACKING;
-  t.image_width = 640;
-  t.image_height = 480;
-  const float body[4] = {100, 50, 200, 400};
-  std::copy(body, body + 4, t.box);
+  user_track_t t = tracking_user();
   EXPECT_EQ(check_message(t), "");
   // A body box passing the frame's edges close up (2.5 image heights, corner above the image): fine
   t.box[1] = -300, t.box[3] = 1200;
@@ -170,10 +167,10 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   t.box[2] = 200;
   EXPECT_EQ(check_message(t), "box height 1e+06 is beyond 480 px image (32 x)");
   // A box width of 1e-45 (a yaw of -0.16 rad/s was flown on it)
-  std::copy(body, body + 4, t.box);
+  std::copy(kBody, kBody + 4, t.box);
   t.box[2] = 1e-45f;
   EXPECT_EQ(check_message(t), "box width 1.4013e-45 is below a pixel");
-  std::copy(body, body + 4, t.box);
+  std::copy(kBody, kBody + 4, t.box);
   t.box[0] = 1e9f;
   EXPECT_EQ(check_message(t), "box x 1e+09 is far outside 640 px image");
   // While searching there is no box (the tracker sends zeros); any other box is held to the same rules
@@ -204,7 +201,7 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   h.track_status = user_track_t::STATUS_TRACKING;
   h.image_width = 640;
   h.image_height = 480;
-  std::copy(body, body + 4, h.user_box);
+  std::copy(kBody, kBody + 4, h.user_box);
   EXPECT_EQ(check_message(h), "");
   h.user_box[2] = 1e-45f;
   EXPECT_EQ(check_message(h), "user_box width 1.4013e-45 is below a pixel");
@@ -218,7 +215,7 @@ TEST(MessageChecks, AbsurdBoxesAndWidthsAreRejectedPerField) {
   // A manual box: at least a pixel, at most 32 of the largest image
   tracker_init_t i{};
   i.command = tracker_init_t::COMMAND_SET_BOX;
-  std::copy(body, body + 4, i.box);
+  std::copy(kBody, kBody + 4, i.box);
   EXPECT_EQ(check_message(i), "");
   i.box[3] = 1e-45f;
   EXPECT_EQ(check_message(i), "box height 1.4013e-45 is below a pixel");
