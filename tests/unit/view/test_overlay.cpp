@@ -137,6 +137,27 @@ TEST_F(OverlayTest, LostTrackIsAmberAndSearchingHasNoBox) {
   EXPECT_FALSE(is_colour(img, static_cast<int>(b.x), 150, kLostAmber));
 }
 
+// A user the tracker finds turned away (no command is read from them): the box's label says so, after the mode.
+TEST_F(OverlayTest, AUserTurnedAwayIsSaidInTheBoxLabel) {
+  const cv::Rect2f b = test::user_box_of(kSeq);
+  const auto label_pixels = [&] {
+    const cv::Mat img = draw();
+    const int bottom = std::max(14, static_cast<int>(b.y));  // the label sits above the box (at 12 px or lower)
+    int n = 0;
+    for (int y = 0; y < bottom; ++y)
+      for (int x = static_cast<int>(b.x); x < img.cols; ++x) {
+        const cv::Vec3b& p = img.at<cv::Vec3b>(y, x);
+        n += p[2] > 150 && p[1] < 100 && p[0] < 100;  // the text's red, anti-aliased
+      }
+    return n;
+  };
+  const int toward = label_pixels();
+  msgs.track->facing = user_track_t::FACING_AWAY;
+  const int away = label_pixels();
+  EXPECT_GT(toward, 0) << "no label to compare with";
+  EXPECT_GT(away, 2 * toward) << "the label did not grow by ' (turned away)'";
+}
+
 TEST_F(OverlayTest, FaceBoxIsAThinRedBoxOnlyWhenTheTrackCarriesOne) {
   // GIVEN a track without a face (all zero): nothing where a face box would be
   const cv::Rect2f b = test::user_box_of(kSeq);
