@@ -155,7 +155,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   frames_since_face_ = 0;
   resize_pending_ = false;
   const cv::Rect2d& b = out_.box;
-  const double fw = b.width / track_body_.width_in_faces;
+  const double fw = box_face_width();
   const cv::Rect roi = face_recheck_window(b, track_body_);
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
   // A face below face_recheck_min_share of the expected width is not looked for (a face below half of it would
@@ -500,7 +500,7 @@ void UserTracker::finish(const cv::Mat& frame) {
   if (out_.status != TrackStatus::kTracking || frame.size() != frame_size_) return;
   // A face the window cannot fully see (at the image's edge) is neither found nor missed; a miss on a
   // frame where the filter is sure of itself is no evidence of loss (the face can be turned away).
-  const double expected_face_width = out_.box.width / track_body_.width_in_faces;
+  const double expected_face_width = box_face_width();  // before a re-anchor may change the box
   const FaceCheck check = recheck_face(frame);
   update_facing(check, expected_face_width);
   if (out_.face) {

@@ -128,6 +128,8 @@ class UserTracker {
   cv::Rect2d body_box(const cv::Rect2d& window) const;
   //! The user's face width as the last good box puts it (its width over the track's face widths).
   double last_face_width() const { return last_good_box_.width / track_body_.width_in_faces; }
+  //! The user's face width as the current box puts it (what the re-check looks for).
+  double box_face_width() const { return out_.box.width / track_body_.width_in_faces; }
 
   TrackerParams p_;
   FaceDetector faces_;
