@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/tracking.hpp>
 #include <opencv2/tracking/tracking_legacy.hpp>
 
@@ -30,6 +31,7 @@
 #include "json_out.hpp"
 #include "log.hpp"
 #include "metrics.hpp"
+#include "occluder.hpp"
 #include "sequence.hpp"
 #include "service_cli.hpp"
 #include "user_tracker.hpp"
@@ -207,14 +209,15 @@ void add_result_fields(gpilot::json& j, const Result& r) {
 
 int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path,
              const std::string& synthetic, bool auto_init,
-             bool compare, bool json, const std::string& plot, const std::string& trace_path, int threads, int repeat) {
+             bool compare, bool json, const std::string& plot, const std::string& trace_path, int threads, int repeat,
+             const std::vector<Occluder>& occluders, const cv::Mat& occluder_texture) {
   cv::setNumThreads(threads);
   const auto params = config.section<TrackerParams>("tracker");
   // Each tracker runs over the sequence in a pass of its own, the frames read again for each (reading is not
   // timed). Run frame by frame in turn, each started its frame from caches the others had just filled (CSRT's
   // 25 ms a frame), and the first to run paid every first use of a frame size: ours, first, ran
   // uav123_person12_1 at 1.91 ms a frame with --compare and at 1.59 without.
-  const auto open_source = [&]() -> std::unique_ptr<FrameSource> {
+  const auto open_plain_source = [&]() -> std::unique_ptr<FrameSource> {
     if (!log_path.empty()) return open_lcm_log(log_path);
     if (!synthetic.empty()) {
 #ifdef GPILOT_HAVE_SYNTHETIC
@@ -224,6 +227,10 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
 #endif
     }
     return open_otb(seq_dir);
+  };
+  const auto open_source = [&]() -> std::unique_ptr<FrameSource> {
+    if (occluders.empty()) return open_plain_source();
+    return occluded(open_plain_source(), occluders, occluder_texture);
   };
   std::string seq_name = open_source()->name();  // opened once first: a bad sequence fails before any pass
 
@@ -452,7 +459,8 @@ int main(int argc, char** argv) {
   gpilot::ServiceCli cli("gpilot-eval-tracker",
                          "Tracker evaluation on an OTB sequence folder or an LCM log (CAMERA + GROUND_TRUTH):\n"
                          "success AUC, precision at 20 px, mean IoU, frames lost, frames per second.");
-  std::string seq, log, plot, synthetic, trace;
+  std::string seq, log, plot, synthetic, trace, occluder_image;
+  std::vector<std::string> occlude;
   bool auto_init = false, compare = false, json = false;
   int threads = 1, repeat = 1;
   auto& app = cli.app();
@@ -467,12 +475,33 @@ int main(int argc, char** argv) {
   app.add_option("--trace", trace, "write every frame's truth, each tracker's box and IoU, and our state (and whether the user faces the drone) and PSR to this CSV");
   app.add_option("--repeat", repeat, "run each tracker over the sequence this many times: its speed is the median pass's "
                  "(a short clip's time is noisy)")->check(CLI::Range(1, 100));
+  app.add_option("--occlude", occlude, "paint an occluder over the frames: x,y,w,h (frame pixels) or x,y,w,h@first-last (frames "
+                 "1-based, 'first-' to the end); repeatable. A target partly hidden, the same pixels for every tracker");
+  app.add_option("--occluder-image", occluder_image, "the occluders' texture, resized to each (default: mid grey), e.g. "
+                 "data/backgrounds/building.jpg");
   app.add_option("--threads", threads, "OpenCV threads (default 1: the cost on one core; times are thread CPU time)");
   return cli.run(argc, argv, [&](const gpilot::Config& config) {
     if (!seq.empty() + !log.empty() + !synthetic.empty() != 1) {
       gpilot::log_error("give one of: a sequence folder, --log, --synthetic");
       return 2;
     }
-    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads, repeat);
+    std::vector<gpilot::Occluder> occluders;
+    for (const std::string& spec : occlude) {
+      const auto o = gpilot::parse_occluder(spec);
+      if (!o) {
+        gpilot::log_error("--occlude %s: not x,y,w,h or x,y,w,h@first-last (w, h > 0; 1 <= first <= last)", spec.c_str());
+        return 2;
+      }
+      occluders.push_back(*o);
+    }
+    cv::Mat texture;
+    if (!occluder_image.empty()) {
+      texture = cv::imread(occluder_image, cv::IMREAD_COLOR);
+      if (texture.empty()) {
+        gpilot::log_error("--occluder-image %s: not an image that loads", occluder_image.c_str());
+        return 2;
+      }
+    }
+    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads, repeat, occluders, texture);
   });
 }

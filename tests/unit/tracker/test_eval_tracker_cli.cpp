@@ -73,5 +73,28 @@ TEST(EvalTrackerCli, EachTrackerInAPassOfItsOwnRepeatedForItsSpeedWithTheFirstPa
   EXPECT_NE(thrice.err.find("gpilot UserTracker: pass 3 of 3"), std::string::npos) << thrice.err;
 }
 
+// --occlude paints the same pixels for every tracker: the whole frame grey from frame 12 hides the block, and
+// every tracker scores lower than on the clear sequence. A spec or texture it cannot use is refused, named.
+TEST(EvalTrackerCli, AnOccluderHidesTheTargetFromEveryTrackerABadOneIsRefused) {
+  const test::ScratchDir dir("gpilot_eval_tracker_occlude");
+  const std::string seq = dir / "glide";
+  write_sequence(seq);
+  const test::CommandResult clear = test::run_tool(kEvalTracker, "'" + seq + "' --json --compare", dir);
+  ASSERT_EQ(clear.code, 0) << clear.err;
+  const test::CommandResult hidden = test::run_tool(kEvalTracker, "'" + seq + "' --json --compare --occlude 0,0,200,120@12-", dir);
+  ASSERT_EQ(hidden.code, 0) << hidden.err;
+  const nlohmann::json a = nlohmann::json::parse(clear.out), b = nlohmann::json::parse(hidden.out);
+  EXPECT_EQ(b["sequence"], "glide (occluded)");
+  ASSERT_EQ(a["trackers"].size(), b["trackers"].size());
+  for (size_t i = 0; i < a["trackers"].size(); ++i)
+    EXPECT_LT(b["trackers"][i]["success_auc"].get<double>(), a["trackers"][i]["success_auc"].get<double>() - 0.2)
+        << a["trackers"][i]["name"];
+  for (const char* bad : {"--occlude 1,2,3", "--occlude 1,2,3,4@0-5", "--occlude 1,2,3,4 --occluder-image /nonexistent.jpg"}) {
+    const test::CommandResult r = test::run_tool(kEvalTracker, "'" + seq + "' " + bad, dir);
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find(std::string(bad).find("image") != std::string::npos ? "--occluder-image" : "--occlude"), std::string::npos) << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace gpilot
