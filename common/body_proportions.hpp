@@ -32,6 +32,17 @@ inline cv::Rect2d face_from_body(const cv::Rect2d& body, const BodyProportions& 
   return cv::Rect2d(cx - fw / 2, body.y + p.top_in_faces * fh, fw, fh);
 }
 
+// The proportions with which body_from_face(face, p) is body: a box given by hand, measured on the face found
+// in it. face must have an area.
+inline BodyProportions body_proportions_of(const cv::Rect2d& body, const cv::Rect2d& face) {
+  BodyProportions p;
+  p.width_in_faces = body.width / face.width;
+  p.height_in_faces = body.height / face.height;
+  p.top_in_faces = (face.y - body.y) / face.height;
+  p.centre_in_faces = ((body.x + body.width / 2) - (face.x + face.width / 2)) / face.width;
+  return p;
+}
+
 // A rectangle given with box `from` (a face with the body box it came with), at the same place in units of the
 // box once the box is `to`: the face the tracker's re-check found, published with the next frame, and the last
 // face the hands stage was given, on frames without one. r itself when `from` has no area.

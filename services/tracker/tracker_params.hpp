@@ -331,6 +331,12 @@ struct TrackerParams {
   // when they disagree by more than face_recheck_tolerance (scale or shift, fraction of the box width).
   int face_recheck_frames = 25;        //!< 0: never (the paper)
   double face_recheck_tolerance = 0.05;
+  // A manual box (TRACKER_INIT) is re-anchored on the preset body box of the face its re-check finds: the flight
+  // stage's speeds are in box widths and its view limits in box heights, so a box dragged by hand 20 % too wide
+  // would fly 20 % slower. true: the box keeps the shape it was given, the track's ratios measured on the first
+  // face found in it (an evaluation that scores the boxes against the annotation it started from:
+  // gpilot-eval-tracker).
+  bool manual_box_keeps_shape = false;
   // The re-check looks for faces from this share of the width the box expects: the cascade's smallest windows
   // cost most, and most on the face itself, where they pass deep into the cascade. At 0.5 a re-check at 3 m
   // (36 px face) took 11-18 ms, a frame -> USER_TRACK of 23-55 ms every second; a larger face than expected
@@ -413,6 +419,7 @@ struct TrackerParams {
     v("opencv_threads", opencv_threads, -1, 64, "cv::setNumThreads of the stage's process (0: no worker threads, -1: OpenCV's default)");
     v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
+    v("manual_box_keeps_shape", manual_box_keeps_shape, "a manual box keeps its shape, the ratios measured on the first face its re-check finds (false: re-anchored on the preset body box of that face)");
     v("face_recheck_min_share", face_recheck_min_share, 0.5, 1.0, "re-check: smallest face searched, share of the expected face width");
     v("face_recheck_max_step", face_recheck_max_step, 0.0, 10.0, "a re-check changes the box's size by at most this share, the rest at the next re-check, due after weak_recheck_frames (0: no limit)");
     v("face_recheck_misses", face_recheck_misses, 0, 1000, "face missed (with weak PSR) at this many re-checks in a row: LOST (0: never)");

@@ -87,6 +87,7 @@ void UserTracker::reset() {
   recheck_psr_.reset();
   recheck_face_.reset();
   resize_pending_ = false;
+  ratios_from_first_face_ = false;
   out_.facing = Facing::kUnknown;
   away_misses_ = 0;
   face_seen_ = false;
@@ -120,6 +121,7 @@ void UserTracker::start(const cv::Mat& frame, const cv::Rect2d& box, InitSource 
   out_.box = body_box(e.box);
   out_.confidence = e.psr;
   out_.init = source;
+  if (source != InitSource::kManual) ratios_from_first_face_ = false;  // a face's or a body's track has its ratios
   last_good_box_ = out_.box;
   last_good_estimate_ = dsst_.estimate();
   if (new_track) ++out_.track_id;
@@ -174,6 +176,14 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
     other_clothes_ = torso_seen(frame, face->face);
     ++other_faces_;
     return FaceCheck::Other;
+  }
+  // manual_box_keeps_shape: the first face found in a box given by hand sets the track's ratios; the box keeps
+  // its shape and place on the user (an annotation wider than the preset, or of the head alone).
+  if (ratios_from_first_face_) {
+    ratios_from_first_face_ = false;
+    track_body_ = body_proportions_of(b, face->face);
+    found_face(frame, face->face);
+    return FaceCheck::Found;
   }
   // The face's size is taken only where it differs from the box's by more than the tolerance: the cascade finds a
   // far user's 15 px face a pyramid step (10 %) larger or smaller from one re-check to the next, and a re-anchor
@@ -579,7 +589,8 @@ const TrackOutput& UserTracker::track(const cv::Mat& frame) {
     const cv::Rect2d box = *pending_box_ & cv::Rect2d(0, 0, frame.cols, frame.rows);
     pending_box_.reset();
     if (box.width >= 2 && box.height >= 2) {
-      track_body_ = p_.body();  // a manual box's face re-check uses the preset ratios
+      track_body_ = p_.body();  // where a manual box puts the face, at least until the re-check finds it
+      ratios_from_first_face_ = p_.manual_box_keeps_shape;
       face_seen_ = false;
       torso_colours_.clear();   // and knows no clothes: its re-check is not gated by them
       other_clothes_.clear();

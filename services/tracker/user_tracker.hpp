@@ -139,6 +139,7 @@ class UserTracker {
   cv::Rect2d last_good_box_;
   DsstEstimate last_good_estimate_;  //!< the filter's last estimate with PSR >= redetect_psr (re-detection starts there)
   BodyProportions track_body_;  //!< the track's body box / face ratios (the re-check re-anchors with them)
+  bool ratios_from_first_face_ = false;  //!< manual_box_keeps_shape: the re-check's first face sets track_body_
   std::array<int64_t, kFaceRefusals> refusals_{};
   cv::Rect2d box_in_window_{0, 0, 1, 1};  //!< the body box in units of the DSST window (x, y from its corner)
   cv::Size frame_size_;

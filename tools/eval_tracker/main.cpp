@@ -210,9 +210,12 @@ void add_result_fields(gpilot::json& j, const Result& r) {
 int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path,
              const std::string& synthetic, bool auto_init,
              bool compare, bool json, const std::string& plot, const std::string& trace_path, int threads, int repeat,
-             const std::vector<Occluder>& occluders, const cv::Mat& occluder_texture) {
+             const std::vector<Occluder>& occluders, const cv::Mat& occluder_texture, bool reanchor_manual) {
   cv::setNumThreads(threads);
-  const auto params = config.section<TrackerParams>("tracker");
+  TrackerParams params = config.section<TrackerParams>("tracker");
+  // Started on the annotation (not --auto-init), our tracker keeps that box's shape, as every other tracker here
+  // does and as the boxes are scored; --reanchor-manual: as the service takes a TRACKER_INIT box.
+  params.manual_box_keeps_shape = !reanchor_manual;
   // Each tracker runs over the sequence in a pass of its own, the frames read again for each (reading is not
   // timed). Run frame by frame in turn, each started its frame from caches the others had just filled (CSRT's
   // 25 ms a frame), and the first to run paid every first use of a frame size: ours, first, ran
@@ -250,7 +253,7 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
   }
   std::vector<std::unique_ptr<Runner>> runners;
 
-  std::string init_how = auto_init ? "face" : "ground_truth";
+  std::string init_how = auto_init ? "face" : reanchor_manual ? "ground_truth, re-anchored on the face" : "ground_truth";
   int frames = 0, truth_frames = 0, init_frame = -1;
   cv::Rect2d init_box;
   // --trace: a row a frame from the start, written once every pass is done.
@@ -461,7 +464,7 @@ int main(int argc, char** argv) {
                          "success AUC, precision at 20 px, mean IoU, frames lost, frames per second.");
   std::string seq, log, plot, synthetic, trace, occluder_image;
   std::vector<std::string> occlude;
-  bool auto_init = false, compare = false, json = false;
+  bool auto_init = false, compare = false, json = false, reanchor_manual = false;
   int threads = 1, repeat = 1;
   auto& app = cli.app();
   app.add_option("sequence", seq, "OTB-layout folder: img/*.jpg and groundtruth_rect.txt (1-based) or init_rect.txt (0-based)");
@@ -469,6 +472,8 @@ int main(int argc, char** argv) {
   app.add_option("--synthetic", synthetic, "a synthetic-world scenario (e.g. tour) instead of a folder; truth = its user box");
   app.add_flag("--auto-init", auto_init, "start from the face detector's body box instead of the first ground truth (our UserTracker from its "
                  "own face search, as in the service)");
+  app.add_flag("--reanchor-manual", reanchor_manual, "started on the ground truth, re-anchor our box on the preset body box of the face "
+               "its re-check finds, as the service does a TRACKER_INIT box (default: the box keeps its shape, as the truth is drawn)");
   app.add_flag("--compare", compare, "also run OpenCV CSRT, KCF, MOSSE and dlib correlation_tracker on the same frames");
   app.add_flag("--json", json, "print one JSON object on stdout");
   app.add_option("--plot", plot, "write the success plot to this PNG");
@@ -502,6 +507,6 @@ int main(int argc, char** argv) {
         return 2;
       }
     }
-    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads, repeat, occluders, texture);
+    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads, repeat, occluders, texture, reanchor_manual);
   });
 }

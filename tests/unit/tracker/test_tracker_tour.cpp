@@ -230,5 +230,33 @@ TEST(TrackerTour, ManualTrackPublishesTheFaceItsRecheckFindsAndReanchorsOn) {
   }
 }
 
+// With manual_box_keeps_shape (gpilot-eval-tracker's start on an annotation) the same box keeps its shape: the
+// re-check finds the face, publishes it, and measures the track's ratios on it instead of re-anchoring; the
+// control above (the default) moves the box to the face's preset body box.
+TEST(TrackerTour, AManualBoxThatKeepsItsShapeIsMeasuredOnItsFaceNotRedrawn) {
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::load("idle"), 1);
+  TrackerParams tp;
+  tp.manual_box_keeps_shape = true;
+  UserTracker tracker(tp, load_tracker_models(tp));
+  const cv::Rect2d truth0(world.render(0.0, 0, std::nullopt).truth.user_box);
+  const cv::Rect2d off(truth0.x - 0.1 * truth0.width + 0.08 * truth0.width, truth0.y - 0.1 * truth0.height,
+                       1.2 * truth0.width, 1.2 * truth0.height);
+  ASSERT_EQ(tracker.set_box(off), "");
+  int faces = 0;
+  for (int i = 0; i <= 3 * tp.face_recheck_frames + 1; ++i) {
+    const TrackOutput out = tracker.process(world.render(i / sp.fps, i, std::nullopt).bgr);
+    ASSERT_EQ(out.status, TrackStatus::kTracking) << "frame " << i;
+    EXPECT_EQ(out.track_id, 1);
+    // The user stands still (idle): the box stays where it was put, 1.2x the body.
+    EXPECT_GT(iou(out.box, off), 0.9) << "frame " << i << ": " << out.box;
+    if (!out.face) continue;
+    ++faces;
+    EXPECT_GT(iou(body_from_face(*out.face, tracker.track_body()), out.box), 0.9) << *out.face << " in " << out.box;
+  }
+  EXPECT_GE(faces, 2);  // the re-checks found the face: the first measured the ratios, the next kept the box
+  EXPECT_NEAR(tracker.track_body().width_in_faces, 1.2 * tp.body().width_in_faces, 0.15 * tp.body().width_in_faces);
+}
+
 }  // namespace
 }  // namespace gpilot
