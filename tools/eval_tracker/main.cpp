@@ -210,7 +210,8 @@ void add_result_fields(gpilot::json& j, const Result& r) {
 int run_eval(const Config& config, const std::string& seq_dir, const std::string& log_path,
              const std::string& synthetic, bool auto_init,
              bool compare, bool json, const std::string& plot, const std::string& trace_path, int threads, int repeat,
-             const std::vector<Occluder>& occluders, const cv::Mat& occluder_texture, bool reanchor_manual) {
+             const std::vector<Occluder>& occluders, const cv::Mat& occluder_texture, bool reanchor_manual,
+             const std::string& synthetic_truth) {
   cv::setNumThreads(threads);
   TrackerParams params = config.section<TrackerParams>("tracker");
   // Started on the annotation (not --auto-init), our tracker keeps that box's shape, as every other tracker here
@@ -224,7 +225,7 @@ int run_eval(const Config& config, const std::string& seq_dir, const std::string
     if (!log_path.empty()) return open_lcm_log(log_path);
     if (!synthetic.empty()) {
 #ifdef GPILOT_HAVE_SYNTHETIC
-      return open_synthetic(synthetic);
+      return open_synthetic(synthetic, synthetic_truth == "face" ? SyntheticTruthBox::kFace : SyntheticTruthBox::kUserBox);
 #else
       throw std::runtime_error("--synthetic: built without the capture stage's synthetic world");
 #endif
@@ -462,7 +463,7 @@ int main(int argc, char** argv) {
   gpilot::ServiceCli cli("gpilot-eval-tracker",
                          "Tracker evaluation on an OTB sequence folder or an LCM log (CAMERA + GROUND_TRUTH):\n"
                          "success AUC, precision at 20 px, mean IoU, frames lost, frames per second.");
-  std::string seq, log, plot, synthetic, trace, occluder_image;
+  std::string seq, log, plot, synthetic, trace, occluder_image, synthetic_truth = "user";
   std::vector<std::string> occlude;
   bool auto_init = false, compare = false, json = false, reanchor_manual = false;
   int threads = 1, repeat = 1;
@@ -470,6 +471,8 @@ int main(int argc, char** argv) {
   app.add_option("sequence", seq, "OTB-layout folder: img/*.jpg and groundtruth_rect.txt (1-based) or init_rect.txt (0-based)");
   app.add_option("--log", log, "LCM log with CAMERA and GROUND_TRUTH instead of a folder");
   app.add_option("--synthetic", synthetic, "a synthetic-world scenario (e.g. tour) instead of a folder; truth = its user box");
+  app.add_option("--synthetic-truth", synthetic_truth, "--synthetic: the truth is the user box (user) or the face box (face: a head "
+                 "annotated as OTB's face clips are; frames without a face are not scored)")->check(CLI::IsMember({"user", "face"}));
   app.add_flag("--auto-init", auto_init, "start from the face detector's body box instead of the first ground truth (our UserTracker from its "
                  "own face search, as in the service)");
   app.add_flag("--reanchor-manual", reanchor_manual, "started on the ground truth, re-anchor our box on the preset body box of the face "
@@ -507,6 +510,6 @@ int main(int argc, char** argv) {
         return 2;
       }
     }
-    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads, repeat, occluders, texture, reanchor_manual);
+    return gpilot::run_eval(config, seq, log, synthetic, auto_init, compare, json, plot, trace, threads, repeat, occluders, texture, reanchor_manual, synthetic_truth);
   });
 }

@@ -155,8 +155,9 @@ class LogSource : public FrameSource {
 #ifdef GPILOT_HAVE_SYNTHETIC
 class SyntheticSource : public FrameSource {
  public:
-  explicit SyntheticSource(const std::string& scenario)
+  SyntheticSource(const std::string& scenario, SyntheticTruthBox truth)
       : world_(SyntheticParams{}, Scenario::load(scenario), 1),
+        truth_(truth),
         frames_(static_cast<int64_t>(world_.scenario().duration_s() * world_.params().fps)) {}
   bool next(EvalFrame& out) override {
     if (i_ >= frames_) return false;
@@ -164,6 +165,12 @@ class SyntheticSource : public FrameSource {
     out.image = f.bgr;
     out.truth = cv::Rect2d(f.truth.user_box);
     out.absent = false;
+    if (truth_ == SyntheticTruthBox::kFace) {
+      // The face box where the face shows; turned away, the head has no truth: left out of the scores.
+      out.absent = !(f.truth.face_box.area() > 0);
+      if (out.absent) out.truth.reset();
+      else out.truth = cv::Rect2d(f.truth.face_box);
+    }
     ++i_;
     return true;
   }
@@ -171,6 +178,7 @@ class SyntheticSource : public FrameSource {
 
  private:
   SyntheticWorld world_;
+  SyntheticTruthBox truth_;
   int64_t frames_;
   int64_t i_ = 0;
 };
@@ -179,8 +187,8 @@ class SyntheticSource : public FrameSource {
 }  // namespace
 
 #ifdef GPILOT_HAVE_SYNTHETIC
-std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario) {
-  return std::make_unique<SyntheticSource>(scenario);
+std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario, SyntheticTruthBox truth) {
+  return std::make_unique<SyntheticSource>(scenario, truth);
 }
 #endif
 

@@ -35,8 +35,10 @@ std::unique_ptr<FrameSource> open_otb(const std::string& dir);
 std::unique_ptr<FrameSource> open_lcm_log(const std::string& path);
 
 #ifdef GPILOT_HAVE_SYNTHETIC
-// The synthetic world's scenario (name or .yaml path) at the capture defaults, truth = its user_box.
-std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario);
+// The synthetic world's scenario (name or .yaml path) at the capture defaults, truth = its user_box, or its
+// face_box (kFace: a head annotated as OTB's face clips are; frames without a face are absent).
+enum class SyntheticTruthBox { kUserBox, kFace };
+std::unique_ptr<FrameSource> open_synthetic(const std::string& scenario, SyntheticTruthBox truth = SyntheticTruthBox::kUserBox);
 #endif
 
 // "x,y,w,h" (commas, tabs or spaces); none if malformed or w, h <= 0.

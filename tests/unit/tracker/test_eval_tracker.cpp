@@ -150,5 +150,31 @@ TEST(EvalSequence, LogPairsCameraAndGroundTruthBySeq) {
   EXPECT_THROW(open_lcm_log("/nonexistent.lcmlog"), std::runtime_error);
 }
 
+#ifdef GPILOT_HAVE_SYNTHETIC
+// --synthetic-truth face: the head's box where the face shows (a head annotated as OTB's face clips are), no
+// truth and the frame absent while the back is turned.
+TEST(EvalSequence, SyntheticFaceTruthIsTheFaceBoxAndAbsentWithTheBackTurned) {
+  auto users = open_synthetic("idle");
+  auto faces = open_synthetic("idle", SyntheticTruthBox::kFace);
+  EvalFrame u, f;
+  ASSERT_TRUE(users->next(u));
+  ASSERT_TRUE(faces->next(f));
+  ASSERT_TRUE(u.truth && f.truth);
+  EXPECT_FALSE(f.absent);
+  EXPECT_EQ((*u.truth & *f.truth), *f.truth);  // the face inside the body box, a third of its width
+  EXPECT_NEAR(f.truth->width / u.truth->width, 1.0 / 2.75, 0.05);
+  auto turning = open_synthetic("turn-around", SyntheticTruthBox::kFace);
+  int frame = 0, first_absent = -1;
+  while (first_absent < 0 && turning->next(f) && ++frame < 400)
+    if (f.absent) {
+      first_absent = frame;
+      EXPECT_FALSE(f.truth.has_value());
+    }
+  // The back is to the camera from about 10.6 s (25 frames a second).
+  EXPECT_GT(first_absent, 240);
+  EXPECT_LT(first_absent, 290);
+}
+#endif
+
 }  // namespace
 }  // namespace gpilot
