@@ -177,6 +177,9 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
     ++other_faces_;
     return FaceCheck::Other;
   }
+  // A manual track learns the user's clothes from the first face its re-check finds (a face's or a body's track
+  // has them from its start): from then on a walker in other clothes is not taken for the user.
+  if (out_.init == InitSource::kManual && torso_colours_.empty()) set_user_clothes(frame, face->face);
   // manual_box_keeps_shape: the first face found in a box given by hand sets the track's ratios; the box keeps
   // its shape and place on the user (an annotation wider than the preset, or of the head alone).
   if (ratios_from_first_face_) {
