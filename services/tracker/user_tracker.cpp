@@ -595,7 +595,7 @@ const TrackOutput& UserTracker::track(const cv::Mat& frame) {
       track_body_ = p_.body();  // where a manual box puts the face, at least until the re-check finds it
       ratios_from_first_face_ = p_.manual_box_keeps_shape;
       face_seen_ = false;
-      torso_colours_.clear();   // and knows no clothes: its re-check is not gated by them
+      torso_colours_.clear();   // its clothes: learnt when the re-check first finds the face, ungated until then
       other_clothes_.clear();
       start(frame, box, InitSource::kManual);
       return out_;

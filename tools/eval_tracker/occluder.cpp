@@ -12,20 +12,31 @@ namespace {
 
 class OccludedSource : public FrameSource {
  public:
-  OccludedSource(std::unique_ptr<FrameSource> src, std::vector<Occluder> occluders, cv::Mat texture)
-      : src_(std::move(src)), occluders_(std::move(occluders)), texture_(std::move(texture)) {}
+  // Each occluder's patch is made once (the texture resized to it), not on every frame of every pass.
+  OccludedSource(std::unique_ptr<FrameSource> src, std::vector<Occluder> occluders, const cv::Mat& texture)
+      : src_(std::move(src)), occluders_(std::move(occluders)) {
+    for (const Occluder& o : occluders_) {
+      cv::Mat patch(o.rect.size(), CV_8UC3, cv::Scalar::all(128));
+      if (!texture.empty()) cv::resize(texture, patch, o.rect.size(), 0, 0, cv::INTER_AREA);
+      cv::Mat grey;
+      cv::cvtColor(patch, grey, cv::COLOR_BGR2GRAY);  // for a one-channel frame (a monochrome camera's log)
+      patches_.push_back({patch, grey});
+    }
+  }
 
   bool next(EvalFrame& out) override {
     if (!src_->next(out)) return false;
     ++frame_;
-    for (const Occluder& o : occluders_) {
+    bool copied = false;
+    for (size_t i = 0; i < occluders_.size(); ++i) {
+      const Occluder& o = occluders_[i];
       if (frame_ < o.first || (o.last > 0 && frame_ > o.last)) continue;
       const cv::Rect in_frame = o.rect & cv::Rect(0, 0, out.image.cols, out.image.rows);
       if (in_frame.empty()) continue;
-      cv::Mat patch(o.rect.size(), out.image.type(), cv::Scalar::all(128));
-      if (!texture_.empty() && texture_.type() == out.image.type()) cv::resize(texture_, patch, o.rect.size(), 0, 0, cv::INTER_AREA);
       // The frame may be shared with the source's cache: paint a copy.
-      out.image = out.image.clone();
+      if (!copied) out.image = out.image.clone();
+      copied = true;
+      const cv::Mat& patch = out.image.channels() == 1 ? patches_[i].grey : patches_[i].bgr;
       patch(in_frame - o.rect.tl()).copyTo(out.image(in_frame));
     }
     return true;
@@ -33,9 +44,12 @@ class OccludedSource : public FrameSource {
   std::string name() const override { return src_->name() + " (occluded)"; }
 
  private:
+  struct Patch {
+    cv::Mat bgr, grey;
+  };
   std::unique_ptr<FrameSource> src_;
   std::vector<Occluder> occluders_;
-  cv::Mat texture_;
+  std::vector<Patch> patches_;
   int frame_ = 0;
 };
 
@@ -65,9 +79,10 @@ std::optional<Occluder> parse_occluder(const std::string& spec) {
   return o;
 }
 
-std::unique_ptr<FrameSource> occluded(std::unique_ptr<FrameSource> src, std::vector<Occluder> occluders, cv::Mat texture) {
+std::unique_ptr<FrameSource> occluded(std::unique_ptr<FrameSource> src, std::vector<Occluder> occluders, const cv::Mat& texture) {
   if (!src) throw std::invalid_argument("occluded: no frame source");
-  return std::make_unique<OccludedSource>(std::move(src), std::move(occluders), std::move(texture));
+  if (!texture.empty() && texture.type() != CV_8UC3) throw std::invalid_argument("occluded: the texture is not a BGR image");
+  return std::make_unique<OccludedSource>(std::move(src), std::move(occluders), texture);
 }
 
 }  // namespace gpilot

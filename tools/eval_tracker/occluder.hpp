@@ -24,8 +24,9 @@ struct Occluder {
 // w or h <= 0, first < 1 or last < first.
 std::optional<Occluder> parse_occluder(const std::string& spec);
 
-// src's frames with every occluder whose frames include theirs filled with texture (BGR, resized to the
-// rectangle as given, then clipped with it; empty: mid grey). Throws std::invalid_argument for no src.
-std::unique_ptr<FrameSource> occluded(std::unique_ptr<FrameSource> src, std::vector<Occluder> occluders, cv::Mat texture);
+// src's frames with every occluder whose frames include theirs filled with texture (CV_8UC3 BGR, resized to the
+// rectangle as given, then clipped with it; empty: mid grey; in grey on a one-channel frame). Throws
+// std::invalid_argument for no src or a texture that is not CV_8UC3.
+std::unique_ptr<FrameSource> occluded(std::unique_ptr<FrameSource> src, std::vector<Occluder> occluders, const cv::Mat& texture);
 
 }  // namespace gpilot

@@ -11,21 +11,21 @@
 namespace gpilot {
 namespace {
 
-// n frames of 20x30, frame i filled with value i, truth (5, 6, 4, 4) on each.
+// n frames of 20x30 (BGR, or one channel), frame i filled with value i, truth (5, 6, 4, 4) on each.
 class ConstantFrames : public FrameSource {
  public:
-  explicit ConstantFrames(int n) : n_(n) {}
+  explicit ConstantFrames(int n, int type = CV_8UC3) : n_(n), type_(type) {}
   bool next(EvalFrame& out) override {
     if (i_ >= n_) return false;
     ++i_;
-    out.image = cv::Mat(20, 30, CV_8UC3, cv::Scalar::all(i_));
+    out.image = cv::Mat(20, 30, type_, cv::Scalar::all(i_));
     out.truth = cv::Rect2d(5, 6, 4, 4);
     return true;
   }
   std::string name() const override { return "constant"; }
 
  private:
-  int n_, i_ = 0;
+  int n_, type_, i_ = 0;
 };
 
 TEST(EvalOccluder, ParsesRectanglesAndFrameRanges) {
@@ -81,6 +81,19 @@ TEST(EvalOccluder, ATextureIsResizedToTheRectangleWithoutOneMidGrey) {
   EXPECT_EQ(f.image.at<cv::Vec3b>(1, 1), cv::Vec3b(128, 128, 128));
   EXPECT_EQ(f.image.at<cv::Vec3b>(2, 2)[0], 1);
   EXPECT_THROW(occluded(nullptr, {}, cv::Mat()), std::invalid_argument);
+  EXPECT_THROW(occluded(std::make_unique<ConstantFrames>(1), {}, cv::Mat(2, 2, CV_8UC1)), std::invalid_argument);
+}
+
+// A one-channel frame (a monochrome camera's log) gets the texture in grey; two occluders both paint it.
+TEST(EvalOccluder, AOneChannelFrameGetsTheTextureInGreyEveryOccluderPainted) {
+  auto src = occluded(std::make_unique<ConstantFrames>(1, CV_8UC1), {*parse_occluder("0,0,2,2"), *parse_occluder("10,10,2,2")},
+                      cv::Mat(2, 2, CV_8UC3, cv::Scalar(50, 50, 50)));
+  EvalFrame f;
+  ASSERT_TRUE(src->next(f));
+  ASSERT_EQ(f.image.type(), CV_8UC1);
+  EXPECT_EQ(f.image.at<uchar>(1, 1), 50);
+  EXPECT_EQ(f.image.at<uchar>(11, 11), 50);
+  EXPECT_EQ(f.image.at<uchar>(5, 5), 1);
 }
 
 }  // namespace
