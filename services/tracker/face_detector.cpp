@@ -52,6 +52,11 @@ std::optional<FaceDetection> FaceDetector::detect(const cv::Mat& frame, const cv
 std::optional<FaceDetection> FaceDetector::scan_step(const cv::Mat& frame) { return first(scan_step_all(frame)); }
 
 std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double min_face, double max_face) {
+  return detect_all_at(frame, min_face, max_face, p_.face.scale_factor);
+}
+
+std::vector<FaceDetection> FaceDetector::detect_all_at(const cv::Mat& frame, double min_face, double max_face,
+                                                       double scale_factor) {
   if (frame.empty()) return {};
   grey_of(frame);
   // The budget: at least face.downscale, and shrunk to at most max_search_pixels.
@@ -67,7 +72,7 @@ std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double
   const int min_px = p_.face.min_face_px;
   const int bound_px = max_face > 0 ? static_cast<int>(std::ceil(max_face / k)) : 0;  // in img; 0: none
   if (bound_px == 0 || bound_px >= min_px)
-    cascade_.detectMultiScale(*img, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+    cascade_.detectMultiScale(*img, faces, scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
                               cv::Size(bound_px, bound_px));
   std::vector<FaceDetection> out = sorted_of(faces, k, cv::Point(), frame);
   // Faces below min_face_px, in an enlarged copy, when that copy is within the budget (a small window).
@@ -78,7 +83,7 @@ std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, double
   const int from_px = std::max(min_px, static_cast<int>(std::floor(min_face * u)));
   if (u > 1.0 && k <= 1.0 && from_px <= max_px && static_cast<double>(grey_.total()) * u * u <= p_.face.max_search_pixels) {
     const size_t first = out.size();
-    for (const FaceDetection& d : search_enlarged(u, from_px, max_px, frame)) {
+    for (const FaceDetection& d : search_enlarged(u, from_px, max_px, frame, scale_factor)) {
       bool seen = false;  // a face of the sizes both searches cover, found by the first
       for (size_t i = 0; i < first; ++i)
         seen = seen || (d.face & out[i].face).area() > 0.5 * std::min(d.face.area(), out[i].face.area());
@@ -262,16 +267,16 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan, 
 std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const cv::Rect& roi, double expected,
                                                    double min_share) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
+  const double sf = p_.face.recheck_scale_factor;
   const bool small = p_.face.recheck_small_face_px > 0 && expected > 0 && expected < p_.face.recheck_small_face_px;
   const double u = small ? p_.face.recheck_enlarged_face_px / expected : 1.0;
-  if (!small || r.empty() || static_cast<double>(r.area()) * u * u > p_.face.max_search_pixels)
-    return detect(frame, roi, min_share * expected);
+  if (!small || r.empty() || static_cast<double>(r.area()) * u * u > p_.face.max_search_pixels) {
+    if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return std::nullopt;
+    return first(in_frame(detect_all_at(frame(r), min_share * expected, 0, sf), r, frame));
+  }
   grey_of(frame(r));
   const int min_px = std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)));
-  const std::vector<FaceDetection> all =
-      in_frame(search_enlarged(u, min_px, static_cast<int>(std::ceil(2 * expected * u)), frame(r)), r, frame);
-  if (all.empty()) return std::nullopt;
-  return all.front();
+  return first(in_frame(search_enlarged(u, min_px, static_cast<int>(std::ceil(2 * expected * u)), frame(r), sf), r, frame));
 }
 
 std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face,
@@ -288,10 +293,11 @@ void FaceDetector::grey_of(const cv::Mat& img) {
     img.copyTo(grey_);
 }
 
-std::vector<FaceDetection> FaceDetector::search_enlarged(double u, int min_px, int max_px, const cv::Mat& img) {
+std::vector<FaceDetection> FaceDetector::search_enlarged(double u, int min_px, int max_px, const cv::Mat& img,
+                                                         double scale_factor) {
   cv::resize(grey_, small_, cv::Size(), u, u, cv::INTER_LINEAR);
   std::vector<cv::Rect> faces;
-  cascade_.detectMultiScale(small_, faces, p_.face.scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
+  cascade_.detectMultiScale(small_, faces, scale_factor, p_.face.min_neighbors, 0, cv::Size(min_px, min_px),
                             cv::Size(max_px, max_px));
   return sorted_of(faces, 1.0 / u, cv::Point(), img);
 }

@@ -42,7 +42,8 @@ class FaceDetector {
   std::vector<FaceDetection> detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face = 0, double max_face = 0);
   // The face re-check's search of roi for a face of about expected px (taken from min_share of it to twice
   // it): detect(frame, roi, min_share * expected), or, for an expected face below face.recheck_small_face_px,
-  // the window enlarged so that it is face.recheck_enlarged_face_px (within max_search_pixels).
+  // the window enlarged so that it is face.recheck_enlarged_face_px (within max_search_pixels); both with the
+  // cascade's pyramid step face.recheck_scale_factor.
   std::optional<FaceDetection> recheck(const cv::Mat& frame, const cv::Rect& roi, double expected, double min_share);
 
   // One frame's share of a whole-frame search spread over frames, within face.scan_slice_pixels: the next
@@ -82,8 +83,10 @@ class FaceDetector {
   std::vector<FaceDetection> step(const cv::Mat& img, Scan& scan, double max_face = 0);
   std::vector<FaceDetection> sorted_of(std::vector<cv::Rect> faces, double k, cv::Point offset, const cv::Mat& frame) const;
   void grey_of(const cv::Mat& img);  //!< img (BGR or grey) into grey_
+  //! detect_all with the cascade's pyramid step given (the re-check's finer one).
+  std::vector<FaceDetection> detect_all_at(const cv::Mat& frame, double min_face, double max_face, double scale_factor);
   //! The faces of min_px .. max_px in grey_ enlarged u times (into small_), boxes in grey_'s pixels, largest first.
-  std::vector<FaceDetection> search_enlarged(double u, int min_px, int max_px, const cv::Mat& img);
+  std::vector<FaceDetection> search_enlarged(double u, int min_px, int max_px, const cv::Mat& img, double scale_factor);
   //! Boxes found in frame(r) moved into frame's pixels, each body box made again there.
   std::vector<FaceDetection> in_frame(std::vector<FaceDetection> all, const cv::Rect& r, const cv::Mat& frame) const;
 

@@ -164,12 +164,15 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // not be this user's: the scale gate below).
   const auto face = faces_.recheck(frame, roi, fw, p_.face_recheck_min_share);
   if (!face) return missed_face(frame, in_view ? FaceCheck::Missed : FaceCheck::OutOfView);
-  // Not clipped to the frame, like the tracked box: a user close to the drone has their feet out of view. The
-  // track's own ratios (fitted when it started): not fitted again, the user may be gesturing now.
-  const cv::Rect2d body = body_from_face(face->face, track_body_);
-  const cv::Point2d centre = (body.tl() + body.br()) * 0.5;
+  // Where the box puts the face (the track's own ratios, fitted when it started: not fitted again, the user may be
+  // gesturing now) and where the face is: the shift is the face's, not its body box's (a face found 2 px larger
+  // puts the centre of the body box made from it 7 px lower, a shift nobody made). The box is not clipped to
+  // the frame: a user close to the drone has their feet out of view.
+  const cv::Rect2d put = face_from_body(b, track_body_);
+  const cv::Point2d put_centre = (put.tl() + put.br()) * 0.5;
+  const cv::Point2d face_centre = (face->face.tl() + face->face.br()) * 0.5;
   const double scale = std::abs(std::log(face->face.width / fw));
-  const cv::Point2d shift = centre - (b.tl() + b.br()) * 0.5;
+  const cv::Point2d shift = face_centre - put_centre;
   if (scale > std::log(kMaxRecheckFaceScale)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
@@ -191,8 +194,8 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // The face's size is taken only where it differs from the box's by more than the tolerance: the cascade finds a
   // far user's 15 px face a pyramid step (10 %) larger or smaller from one re-check to the next, and a re-anchor
   // for a shift alone that took it too made a 58 px box 66 px for seconds (open loop `far`). A shift alone moves
-  // the box and keeps its size; a resize keeps the box's shape (the track's ratios).
-  const bool resize = scale > std::log1p(p_.face_recheck_tolerance);
+  // the box and keeps its size; a resize keeps the box's shape (the track's ratios), scaled about the face.
+  const bool resize = scale > std::log1p(p_.face_recheck_tolerance) && std::abs(face->face.width - fw) > p_.face_recheck_tolerance_px;
   if (resize || std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width) {
     double k = resize ? face->face.width / fw : 1.0;
     const double step = 1.0 + p_.face_recheck_max_step;
@@ -200,8 +203,10 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
       k = std::clamp(k, 1.0 / step, step);
       resize_pending_ = true;  // the rest, if the next re-check still finds it
     }
-    start(frame, cv::Rect2d(centre.x - k * b.width / 2, centre.y - k * b.height / 2, k * b.width, k * b.height), out_.init,
-          false);
+    start(frame,
+          cv::Rect2d(face_centre.x - k * (put_centre.x - b.x), face_centre.y - k * (put_centre.y - b.y), k * b.width,
+                     k * b.height),
+          out_.init, false);
   }
   found_face(frame, face->face);
   return FaceCheck::Found;

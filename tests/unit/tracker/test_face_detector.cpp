@@ -188,9 +188,13 @@ TEST(FaceDetector, ReCheckFindsASmallFaceAndTakesNonsenseSizes) {
   ASSERT_TRUE(face.has_value());
   EXPECT_TRUE(face->face.contains({98, 45})) << face->face;
   EXPECT_NEAR(face->face.width / any->face.width, 1.0, 0.15) << face->face << " vs " << any->face;
+  // The plain search, from its smallest face (at the search's pyramid step, the same face as detect's).
+  TrackerParams same_step;
+  same_step.face.recheck_scale_factor = same_step.face.scale_factor;
+  FaceDetector plain{same_step, load_face_cascade(same_step)};
   for (const double nonsense : {0.0, -5.0}) {
-    const auto f = d.recheck(small, roi, nonsense, 0.7);
-    ASSERT_TRUE(f.has_value()) << nonsense;  // the plain search, from its smallest face
+    const auto f = plain.recheck(small, roi, nonsense, 0.7);
+    ASSERT_TRUE(f.has_value()) << nonsense;
     EXPECT_EQ(f->face, any->face) << nonsense;
   }
   EXPECT_FALSE(d.recheck(small, cv::Rect(5000, 5000, 40, 40), 10.0, 0.7).has_value());

@@ -409,7 +409,8 @@ int longest_drag(const TrackerParams& tp, unsigned drop_pattern) {
 // recheck_other_clothes: after the first crossing the track knows the walker's shirt; on the second a torso
 // showing more of it than of the user's is the walker's. Measured on 24 drop patterns: without the rule one took
 // the box 4 frames; with it none (on a second bench, each camera pose held for the log's 8 ms steps and 36
-// patterns: 6 took it 1-6 frames without, 2 took it 3 frames with).
+// patterns: 6 took it 1-6 frames without, 2 took it 3 frames with). Since the re-check measures faces at its finer
+// pyramid step (face.recheck_scale_factor), the 12 patterns here: without the rule one took it 2 frames, with it none.
 TEST(TrackerBystander, AWalkerCrossingWhileTheDroneMovesDoesNotTakeTheBox) {
   TrackerParams without;
   without.recheck_other_clothes = false;
@@ -422,7 +423,7 @@ TEST(TrackerBystander, AWalkerCrossingWhileTheDroneMovesDoesNotTakeTheBox) {
     without_max = std::max(without_max, b);
   }
   EXPECT_EQ(with_max, 0);
-  EXPECT_GE(without_max, 3);
+  EXPECT_GE(without_max, 2);
 }
 
 // torso_colours: chromaticity, so a gain on the light leaves it; another shirt does not match.
