@@ -104,6 +104,7 @@ std::vector<FaceDetection> FaceDetector::sorted_of(std::vector<cv::Rect> faces, 
   for (const cv::Rect& f : faces) {
     FaceDetection d;
     d.face = cv::Rect2d((f.x + offset.x) * k, (f.y + offset.y) * k, f.width * k, f.height * k);
+    d.pixel = k;
     d.body = body_from_face(d.face, p_.body()) & cv::Rect2d(0, 0, frame.cols, frame.rows);
     out.push_back(d);
   }

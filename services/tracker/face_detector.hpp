@@ -15,6 +15,7 @@ namespace gpilot {
 struct FaceDetection {
   cv::Rect2d face;  //!< pixels, in the frame given
   cv::Rect2d body;  //!< body box from the head-body ratio, clipped to the frame
+  double pixel = 1;  //!< frame pixels a pixel of the searched image (a shrunk copy's > 1, an enlarged one's < 1)
 };
 
 // Where the face re-check looks for the face of a body box: 3 face widths wide centred where the ratios put

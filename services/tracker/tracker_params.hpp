@@ -337,7 +337,8 @@ struct TrackerParams {
   // when they disagree by more than face_recheck_tolerance (scale or shift, fraction of the box width).
   int face_recheck_frames = 25;        //!< 0: never (the paper)
   double face_recheck_tolerance = 0.05;
-  // ... and the face's width by more than this many pixels too: the cascade's boxes are whole pixels, and a user
+  // ... and the face's width by more than this many pixels of the image the re-check searched (a far face's
+  // window is enlarged: a fraction of a frame pixel) too: the cascade's boxes are whole pixels, and a user
   // standing still was found 35, 37, 36, 36 px wide at the re-check's finer pyramid step (dark-skin), a 2 px
   // swing that is 5.7 % of a 35 px face and resized the box for good (AUC 0.952 -> 0.860).
   double face_recheck_tolerance_px = 2.0;
@@ -429,7 +430,7 @@ struct TrackerParams {
     v("opencv_threads", opencv_threads, -1, 64, "cv::setNumThreads of the stage's process (0: no worker threads, -1: OpenCV's default)");
     v("face_recheck_frames", face_recheck_frames, 0, 100000, "re-find the face in the box this often, frames (0: never, as the paper)");
     v("face_recheck_tolerance", face_recheck_tolerance, 0.0, 1.0, "re-anchor when box and face disagree by more, fraction of box width");
-    v("face_recheck_tolerance_px", face_recheck_tolerance_px, 0.0, 100.0, "... and resize only when the face's width differs by more than this, pixels");
+    v("face_recheck_tolerance_px", face_recheck_tolerance_px, 0.0, 100.0, "... and resize only when the face's width differs by more than this, pixels of the searched image");
     v("manual_box_keeps_shape", manual_box_keeps_shape, "a manual box keeps its shape, the ratios measured on the first face its re-check finds (false: re-anchored on the preset body box of that face)");
     v("face_recheck_min_share", face_recheck_min_share, 0.5, 1.0, "re-check: smallest face searched, share of the expected face width");
     v("face_recheck_max_step", face_recheck_max_step, 0.0, 10.0, "a re-check changes the box's size by at most this share, the rest at the next re-check, due after weak_recheck_frames (0: no limit)");

@@ -57,6 +57,8 @@ namespace {
 // The re-check takes a face only within this factor of the width the track expects, larger or smaller: a face
 // twice or half the size is another person's (nearer or further), not this user's after a DSST scale drift.
 constexpr double kMaxRecheckFaceScale = 2.0;
+// The largest face a manual box's first face search takes, in box widths (measure_first_face).
+constexpr double kMaxFirstFaceInBox = 1.5;
 }  // namespace
 
 UserTracker::UserTracker(const TrackerParams& params, TrackerModels models)
@@ -160,6 +162,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const double fw = box_face_width();
   const cv::Rect roi = face_recheck_window(b, track_body_);
   const bool in_view = (roi & cv::Rect(0, 0, frame.cols, frame.rows)) == roi;
+  if (ratios_from_first_face_) return measure_first_face(frame, in_view);
   // A face below face_recheck_min_share of the expected width is not looked for (a face below half of it would
   // not be this user's: the scale gate below).
   const auto face = faces_.recheck(frame, roi, fw, p_.face_recheck_min_share);
@@ -183,19 +186,11 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // A manual track learns the user's clothes from the first face its re-check finds (a face's or a body's track
   // has them from its start): from then on a walker in other clothes is not taken for the user.
   if (out_.init == InitSource::kManual && torso_colours_.empty()) set_user_clothes(frame, face->face);
-  // manual_box_keeps_shape: the first face found in a box given by hand sets the track's ratios; the box keeps
-  // its shape and place on the user (an annotation wider than the preset, or of the head alone).
-  if (ratios_from_first_face_) {
-    ratios_from_first_face_ = false;
-    track_body_ = body_proportions_of(b, face->face);
-    found_face(frame, face->face);
-    return FaceCheck::Found;
-  }
   // The face's size is taken only where it differs from the box's by more than the tolerance: the cascade finds a
   // far user's 15 px face a pyramid step (10 %) larger or smaller from one re-check to the next, and a re-anchor
   // for a shift alone that took it too made a 58 px box 66 px for seconds (open loop `far`). A shift alone moves
   // the box and keeps its size; a resize keeps the box's shape (the track's ratios), scaled about the face.
-  const bool resize = scale > std::log1p(p_.face_recheck_tolerance) && std::abs(face->face.width - fw) > p_.face_recheck_tolerance_px;
+  const bool resize = scale > std::log1p(p_.face_recheck_tolerance) && std::abs(face->face.width - fw) > p_.face_recheck_tolerance_px * face->pixel;
   if (resize || std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width) {
     double k = resize ? face->face.width / fw : 1.0;
     const double step = 1.0 + p_.face_recheck_max_step;
@@ -209,6 +204,39 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
           out_.init, false);
   }
   found_face(frame, face->face);
+  return FaceCheck::Found;
+}
+
+// manual_box_keeps_shape: the first face found in a box given by hand sets the track's ratios, and the box keeps
+// its shape and place on the user (an annotation wider than the preset, or of the head alone). Where the face is
+// in the box is not known yet (a body's box has it at its top, a head's box is all face, a third of the size the
+// preset's re-check looks for): the box, grown by a quarter of its width, is searched for faces from
+// face_recheck_min_share of the preset's face to kMaxFirstFaceInBox of the box's width (a cascade's face box can
+// be wider than a head's annotated box), the largest centred in the box taken. The
+// re-check's own search, in the window those ratios put it, then measures it as every later re-check will (a
+// plain search's face came a pyramid step off theirs, and each of them resized the box).
+UserTracker::FaceCheck UserTracker::measure_first_face(const cv::Mat& frame, bool in_view) {
+  const cv::Rect2d& b = out_.box;
+  const double grow = 0.25 * b.width;
+  const cv::Rect roi(cv::Rect2d(b.x - grow, b.y - grow, b.width + 2 * grow, b.height + 2 * grow));
+  std::optional<cv::Rect2d> face;
+  for (const FaceDetection& f : faces_.detect_all(frame, roi, p_.face_recheck_min_share * box_face_width(), kMaxFirstFaceInBox * b.width))
+    if (b.contains((f.face.tl() + f.face.br()) * 0.5)) {
+      face = f.face;
+      break;
+    }
+  if (!face) return missed_face(frame, in_view ? FaceCheck::Missed : FaceCheck::OutOfView);
+  BodyProportions measured = body_proportions_of(b, *face);
+  const auto again =
+      faces_.recheck(frame, face_recheck_window(b, measured), face->width, p_.face_recheck_min_share);
+  if (again && std::abs(std::log(again->face.width / face->width)) <= std::log(kMaxRecheckFaceScale)) {
+    face = again->face;
+    measured = body_proportions_of(b, *face);
+  }
+  ratios_from_first_face_ = false;
+  track_body_ = measured;
+  if (torso_colours_.empty()) set_user_clothes(frame, *face);  // the manual track's clothes (recheck_face)
+  found_face(frame, *face);
   return FaceCheck::Found;
 }
 

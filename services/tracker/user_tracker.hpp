@@ -120,6 +120,7 @@ class UserTracker {
   // puts it is not in the user's clothes.
   enum class FaceCheck { Found, Missed, OutOfView, Other, OffUser };
   FaceCheck recheck_face(const cv::Mat& frame);
+  FaceCheck measure_first_face(const cv::Mat& frame, bool in_view);
   FaceCheck missed_face(const cv::Mat& frame, FaceCheck users);
   void update_facing(FaceCheck check, double expected_face_width);
   bool wears_users_clothes(const cv::Mat& frame, const cv::Rect2d& face, bool learn = false);
