@@ -38,6 +38,8 @@ namespace {
 // cascade's windows come in scale_factor steps, and a face just above min_face_px (the synthetic user's
 // 20.8 px at 5 m) was found by neither search without the overlap.
 constexpr double kUpscaleSizeOverlap = 1.25;
+// The re-check takes a face up to this many times the size it expects (a larger one is not the user's).
+constexpr double kRecheckMaxFaceShare = 2.0;
 
 std::optional<FaceDetection> first(const std::vector<FaceDetection>& faces) {
   if (faces.empty()) return std::nullopt;
@@ -268,16 +270,22 @@ std::vector<FaceDetection> FaceDetector::step(const cv::Mat& frame, Scan& scan, 
 std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const cv::Rect& roi, double expected,
                                                    double min_share) {
   const cv::Rect r = roi & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (r.empty()) return std::nullopt;
   const double sf = p_.face.recheck_scale_factor;
-  const bool small = p_.face.recheck_small_face_px > 0 && expected > 0 && expected < p_.face.recheck_small_face_px;
-  const double u = small ? p_.face.recheck_enlarged_face_px / expected : 1.0;
-  if (!small || r.empty() || static_cast<double>(r.area()) * u * u > p_.face.max_search_pixels) {
+  if (!(expected > 0)) {  // no size expected: the plain search, from its smallest face
     if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return std::nullopt;
-    return first(in_frame(detect_all_at(frame(r), min_share * expected, 0, sf), r, frame));
+    return first(in_frame(detect_all_at(frame(r), 0, 0, sf), r, frame));
   }
-  grey_of(frame(r));
+  // Only the sizes taken are searched (at the finer step, a search from the cascade's smallest window up cost
+  // 5x the re-check's time): the window enlarged for a far face, shrunk to max_search_pixels for a near one.
+  const bool small = p_.face.recheck_small_face_px > 0 && expected < p_.face.recheck_small_face_px;
+  const double u = std::min(small ? p_.face.recheck_enlarged_face_px / expected : 1.0,
+                            std::sqrt(p_.face.max_search_pixels / static_cast<double>(r.area())));
   const int min_px = std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)));
-  return first(in_frame(search_enlarged(u, min_px, static_cast<int>(std::ceil(2 * expected * u)), frame(r), sf), r, frame));
+  const int max_px = static_cast<int>(std::ceil(kRecheckMaxFaceShare * expected * u));
+  if (max_px < min_px) return std::nullopt;
+  grey_of(frame(r));
+  return first(in_frame(search_enlarged(u, min_px, max_px, frame(r), sf), r, frame));
 }
 
 std::vector<FaceDetection> FaceDetector::detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face,

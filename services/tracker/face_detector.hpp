@@ -41,10 +41,10 @@ class FaceDetector {
   // max_face (frame pixels, 0: none): nor any larger face (the searches whose smallest face is larger do not run).
   std::vector<FaceDetection> detect_all(const cv::Mat& frame, double min_face = 0, double max_face = 0);
   std::vector<FaceDetection> detect_all(const cv::Mat& frame, const cv::Rect& roi, double min_face = 0, double max_face = 0);
-  // The face re-check's search of roi for a face of about expected px (taken from min_share of it to twice
-  // it): detect(frame, roi, min_share * expected), or, for an expected face below face.recheck_small_face_px,
-  // the window enlarged so that it is face.recheck_enlarged_face_px (within max_search_pixels); both with the
-  // cascade's pyramid step face.recheck_scale_factor.
+  // The face re-check's search of roi for a face of about expected px, only for faces from min_share of it to
+  // twice it, at the cascade's pyramid step face.recheck_scale_factor: for an expected face below
+  // face.recheck_small_face_px the window enlarged so that it is face.recheck_enlarged_face_px, a large window
+  // shrunk to max_search_pixels. No size expected (<= 0): the plain search.
   std::optional<FaceDetection> recheck(const cv::Mat& frame, const cv::Rect& roi, double expected, double min_share);
 
   // One frame's share of a whole-frame search spread over frames, within face.scan_slice_pixels: the next

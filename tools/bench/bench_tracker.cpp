@@ -1,5 +1,5 @@
 // Tracker costs on one core: FHOG of a DSST-sized window, one DSST frame (track + learn) on 640x480 for a
-// near and a far person, the Haar face search on a 640x480 frame, and a searching frame of the UserTracker
+// near and a far person, the Haar face search on a 640x480 frame, the face re-check's, and a searching frame of the UserTracker
 // (face scan step, and with tracker.person the person detector on one frame in person.every_frames).
 #include <benchmark/benchmark.h>
 
@@ -59,6 +59,21 @@ void BM_FaceSearch640x480(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(faces.detect(frame));
 }
 BENCHMARK(BM_FaceSearch640x480)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// The face re-check's search of its window (face_recheck_window of a body box around the expected face) on a
+// textured 640x480 frame. Args: the expected face (px: 35 searched as shot, 12 enlarged), the pyramid step x 100
+// (face.recheck_scale_factor).
+void BM_FaceRecheck(benchmark::State& state) {
+  cv::setNumThreads(1);
+  gpilot::TrackerParams p;
+  p.face.recheck_scale_factor = static_cast<double>(state.range(1)) / 100.0;
+  gpilot::FaceDetector faces(p, load_face_cascade(p));
+  const cv::Mat frame = gpilot::test::texture(cv::Size(640, 480), 11);
+  const double face = static_cast<double>(state.range(0));
+  const cv::Rect roi = gpilot::face_recheck_window(gpilot::body_from_face(cv::Rect2d(300, 100, face, face), p.body()), p);
+  for (auto _ : state) benchmark::DoNotOptimize(faces.recheck(frame, roi, face, p.face_recheck_min_share));
+}
+BENCHMARK(BM_FaceRecheck)->Args({35, 110})->Args({35, 103})->Args({12, 110})->Args({12, 103})->Unit(benchmark::kMillisecond);
 
 // A UserTracker SEARCHING a frame with nobody in it (the search's whole budget every frame): the mean over
 // frames is the cost of a searching frame. Args: width, height, tracker.person.enabled.
