@@ -276,12 +276,16 @@ std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const c
     if (r.width < p_.face.min_face_px || r.height < p_.face.min_face_px) return std::nullopt;
     return first(in_frame(detect_all_at(frame(r), 0, 0, sf), r, frame));
   }
-  // Only the sizes taken are searched (at the finer step, a search from the cascade's smallest window up cost
-  // 5x the re-check's time): the window enlarged for a far face, shrunk to max_search_pixels for a near one.
+  // No face larger than the re-check takes is searched for (at the finer step, the search up to the window's
+  // size cost 2.5x the re-check's time): the window enlarged for a far face, shrunk to max_search_pixels for a
+  // near one.
   const bool small = p_.face.recheck_small_face_px > 0 && expected < p_.face.recheck_small_face_px;
   const double u = std::min(small ? p_.face.recheck_enlarged_face_px / expected : 1.0,
                             std::sqrt(p_.face.max_search_pixels / static_cast<double>(r.area())));
-  const int min_px = std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)));
+  // From the cascade's smallest window as shot (its hits there are grouped into the face's box: from min_share of
+  // the expected face, the dark-skin user's face was not found at all); enlarged, from min_share.
+  const int min_px = small ? std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)))
+                           : p_.face.min_face_px;
   const int max_px = static_cast<int>(std::ceil(kRecheckMaxFaceShare * expected * u));
   if (max_px < min_px) return std::nullopt;
   grey_of(frame(r));
