@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -293,6 +294,27 @@ TEST(TrackerTour, AStillUsersBoxKeepsItsSizeThroughTheReChecks) {
   EXPECT_GT(coarse_swing, 0.04);
 }
 
+// The tracker started by hand on the scenario's first truth box (the user's, or with face_truth the face's), run
+// through it: of the frames over its last 30 % (the user back and facing the drone) with a truth box, the share
+// TRACKING on it at IoU > 0.5.
+double share_on_truth_at_the_end(UserTracker& tracker, const std::string& scenario, bool face_truth) {
+  const SyntheticParams sp;
+  const SyntheticWorld world(sp, Scenario::load(scenario), 1);
+  const auto truth = [face_truth](const SyntheticFrame& f) { return cv::Rect2d(face_truth ? f.truth.face_box : f.truth.user_box); };
+  EXPECT_EQ(tracker.set_box(truth(world.render(0.0, 0, std::nullopt))), "");
+  const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
+  int judged = 0, on = 0;
+  for (int i = 0; i < frames; ++i) {
+    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
+    const TrackOutput out = tracker.process(f.bgr);
+    if (i < 0.7 * frames || !(truth(f).area() > 0)) continue;
+    ++judged;
+    if (out.status == TrackStatus::kTracking && iou(out.box, truth(f)) > 0.5) ++on;
+  }
+  EXPECT_GT(judged, 0);
+  return judged > 0 ? static_cast<double>(on) / judged : 0.0;
+}
+
 // A box of the head alone (as OTB's face clips annotate it), given by hand with manual_box_keeps_shape: the first
 // face is looked for in the whole box (the preset's re-check looks for a face a third of its size at its top), its
 // ratios measured, and the user's clothes learnt under it. The user turns their back (turn-around): the track is
@@ -300,27 +322,12 @@ TEST(TrackerTour, AStillUsersBoxKeepsItsSizeThroughTheReChecks) {
 // face, and the user was taken back as a body box of the preset (100 x 255 px for the head's 35 x 35): AUC 0.347
 // against DSST alone's 0.540 (gpilot-eval-tracker --synthetic turn-around --synthetic-truth face).
 TEST(TrackerTour, AHeadBoxIsMeasuredOnItsFaceAndTakenBackAsAHeadAfterTheBackWasTurned) {
-  const SyntheticParams sp;
-  const SyntheticWorld world(sp, Scenario::load("turn-around"), 1);
   TrackerParams tp;
   tp.manual_box_keeps_shape = true;
   UserTracker tracker(tp, load_tracker_models(tp));
-  ASSERT_EQ(tracker.set_box(cv::Rect2d(world.render(0.0, 0, std::nullopt).truth.face_box)), "");
-  const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
-  int faced = 0, on_head = 0;
-  for (int i = 0; i < frames; ++i) {
-    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
-    const TrackOutput out = tracker.process(f.bgr);
-    if (i == 2 * tp.face_recheck_frames) {
-      EXPECT_LT(tracker.track_body().width_in_faces, 1.5) << "the head box's ratios, measured";
-      EXPECT_FALSE(tracker.user_clothes().empty()) << "the clothes under the head's face, learnt";
-    }
-    if (i < 0.7 * frames || !(f.truth.face_box.area() > 0)) continue;  // facing the drone again, over the last 30 %
-    ++faced;
-    if (out.status == TrackStatus::kTracking && iou(out.box, cv::Rect2d(f.truth.face_box)) > 0.5) ++on_head;
-  }
-  ASSERT_GT(faced, 0);
-  EXPECT_GT(on_head, 0.9 * faced) << on_head << " of " << faced;
+  EXPECT_GT(share_on_truth_at_the_end(tracker, "turn-around", true), 0.9);
+  EXPECT_LT(tracker.track_body().width_in_faces, 1.5) << "the head box's ratios, measured";
+  EXPECT_FALSE(tracker.user_clothes().empty()) << "the clothes under the head's face, learnt";
 }
 
 // A manual track learns the user's clothes at the first face its re-check finds, as a face's track knows them
@@ -328,21 +335,9 @@ TEST(TrackerTour, AHeadBoxIsMeasuredOnItsFaceAndTakenBackAsAHeadAfterTheBackWasT
 // the user comes back) it is the user who is taken back. Without the clothes any face was the user's: 0.165
 // AUC, the box on the walker to the end.
 TEST(TrackerTour, AManualTrackLearnsTheClothesAndTakesTheUserBackNotTheWalker) {
-  const SyntheticParams sp;
-  const SyntheticWorld world(sp, Scenario::load("walk-out"), 1);
   const TrackerParams tp;
   UserTracker tracker(tp, load_tracker_models(tp));
-  ASSERT_EQ(tracker.set_box(cv::Rect2d(world.render(0.0, 0, std::nullopt).truth.user_box)), "");
-  const int frames = static_cast<int>(world.scenario().duration_s() * sp.fps);
-  int last_frames = 0, on_user = 0;
-  for (int i = 0; i < frames; ++i) {
-    const SyntheticFrame f = world.render(i / sp.fps, i, std::nullopt);
-    const TrackOutput out = tracker.process(f.bgr);
-    if (i < 0.7 * frames) continue;  // the user is back and gesturing over the last 30 %
-    ++last_frames;
-    if (out.status == TrackStatus::kTracking && iou(out.box, cv::Rect2d(f.truth.user_box)) > 0.5) ++on_user;
-  }
-  EXPECT_GT(on_user, 0.9 * last_frames) << on_user << " of " << last_frames;
+  EXPECT_GT(share_on_truth_at_the_end(tracker, "walk-out", false), 0.9);
 }
 
 }  // namespace
