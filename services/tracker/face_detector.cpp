@@ -38,8 +38,6 @@ namespace {
 // cascade's windows come in scale_factor steps, and a face just above min_face_px (the synthetic user's
 // 20.8 px at 5 m) was found by neither search without the overlap.
 constexpr double kUpscaleSizeOverlap = 1.25;
-// The re-check takes a face up to this many times the size it expects (a larger one is not the user's).
-constexpr double kRecheckMaxFaceShare = 2.0;
 
 std::optional<FaceDetection> first(const std::vector<FaceDetection>& faces) {
   if (faces.empty()) return std::nullopt;
@@ -286,7 +284,7 @@ std::optional<FaceDetection> FaceDetector::recheck(const cv::Mat& frame, const c
   // the expected face, the dark-skin user's face was not found at all); enlarged, from min_share.
   const int min_px = small ? std::max(p_.face.min_face_px, static_cast<int>(std::floor(min_share * expected * u)))
                            : p_.face.min_face_px;
-  const int max_px = static_cast<int>(std::ceil(kRecheckMaxFaceShare * expected * u));
+  const int max_px = static_cast<int>(std::ceil(kMaxRecheckFaceScale * expected * u));
   if (max_px < min_px) return std::nullopt;
   grey_of(frame(r));
   return first(in_frame(search_enlarged(u, min_px, max_px, frame(r), sf), r, frame));

@@ -25,6 +25,10 @@ cv::Rect face_recheck_window(const cv::Rect2d& body, const TrackerParams& params
 
 class FaceDetector {
  public:
+  // The re-check takes a face only within this factor of the width it expects, larger or smaller: a face twice
+  // or half the size is another person's (nearer or further), not this user's after a DSST scale drift.
+  static constexpr double kMaxRecheckFaceScale = 2.0;
+
   // cascade: tracker.face.cascade, read by load_face_cascade (face_cascade.hpp); an empty one throws
   // std::invalid_argument.
   FaceDetector(const TrackerParams& params, cv::CascadeClassifier cascade);

@@ -54,10 +54,9 @@ bool upright_in_view(const PersonDetection& d, const cv::Size& frame, double max
 }  // namespace
 
 namespace {
-// The re-check takes a face only within this factor of the width the track expects, larger or smaller: a face
-// twice or half the size is another person's (nearer or further), not this user's after a DSST scale drift.
-constexpr double kMaxRecheckFaceScale = 2.0;
-// The largest face a manual box's first face search takes, in box widths (measure_first_face).
+// A manual box's first face search (measure_first_face): the box grown by this share of its width each side,
+// faces up to kMaxFirstFaceInBox box widths.
+constexpr double kFirstFaceBoxGrowth = 0.25;
 constexpr double kMaxFirstFaceInBox = 1.5;
 }  // namespace
 
@@ -176,7 +175,7 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   const cv::Point2d face_centre = (face->face.tl() + face->face.br()) * 0.5;
   const double scale = std::abs(std::log(face->face.width / fw));
   const cv::Point2d shift = face_centre - put_centre;
-  if (scale > std::log(kMaxRecheckFaceScale)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
+  if (scale > std::log(FaceDetector::kMaxRecheckFaceScale)) return missed_face(frame, FaceCheck::Missed);  // not this user's face
   // Nor is one whose torso wears other clothes (a look-alike crossing in front or standing beside).
   if (!wears_users_clothes(frame, face->face, true)) {
     other_clothes_ = torso_seen(frame, face->face);
@@ -190,7 +189,8 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
   // far user's 15 px face a pyramid step (10 %) larger or smaller from one re-check to the next, and a re-anchor
   // for a shift alone that took it too made a 58 px box 66 px for seconds (open loop `far`). A shift alone moves
   // the box and keeps its size; a resize keeps the box's shape (the track's ratios), scaled about the face.
-  const bool resize = scale > std::log1p(p_.face_recheck_tolerance) && std::abs(face->face.width - fw) > p_.face_recheck_tolerance_px * face->pixel;
+  const bool resize = scale > std::log1p(p_.face_recheck_tolerance) &&
+                      std::abs(face->face.width - fw) > p_.face_recheck_tolerance_px * face->pixel;
   if (resize || std::hypot(shift.x, shift.y) > p_.face_recheck_tolerance * b.width) {
     double k = resize ? face->face.width / fw : 1.0;
     const double step = 1.0 + p_.face_recheck_max_step;
@@ -217,10 +217,11 @@ UserTracker::FaceCheck UserTracker::recheck_face(const cv::Mat& frame) {
 // plain search's face came a pyramid step off theirs, and each of them resized the box).
 UserTracker::FaceCheck UserTracker::measure_first_face(const cv::Mat& frame, bool in_view) {
   const cv::Rect2d& b = out_.box;
-  const double grow = 0.25 * b.width;
+  const double grow = kFirstFaceBoxGrowth * b.width;
   const cv::Rect roi(cv::Rect2d(b.x - grow, b.y - grow, b.width + 2 * grow, b.height + 2 * grow));
   std::optional<cv::Rect2d> face;
-  for (const FaceDetection& f : faces_.detect_all(frame, roi, p_.face_recheck_min_share * box_face_width(), kMaxFirstFaceInBox * b.width))
+  const double min_face = p_.face_recheck_min_share * box_face_width();
+  for (const FaceDetection& f : faces_.detect_all(frame, roi, min_face, kMaxFirstFaceInBox * b.width))
     if (b.contains((f.face.tl() + f.face.br()) * 0.5)) {
       face = f.face;
       break;
@@ -229,7 +230,8 @@ UserTracker::FaceCheck UserTracker::measure_first_face(const cv::Mat& frame, boo
   BodyProportions measured = body_proportions_of(b, *face);
   const auto again =
       faces_.recheck(frame, face_recheck_window(b, measured), face->width, p_.face_recheck_min_share);
-  if (again && std::abs(std::log(again->face.width / face->width)) <= std::log(kMaxRecheckFaceScale)) {
+  const double max_scale = std::log(FaceDetector::kMaxRecheckFaceScale);
+  if (again && std::abs(std::log(again->face.width / face->width)) <= max_scale) {
     face = again->face;
     measured = body_proportions_of(b, *face);
   }

@@ -1,6 +1,6 @@
 // Tracker costs on one core: FHOG of a DSST-sized window, one DSST frame (track + learn) on 640x480 for a
-// near and a far person, the Haar face search on a 640x480 frame, the face re-check's, and a searching frame of the UserTracker
-// (face scan step, and with tracker.person the person detector on one frame in person.every_frames).
+// near and a far person, the Haar face search on a 640x480 frame, the face re-check's, and a searching frame of
+// the UserTracker (face scan step, and with tracker.person the person detector on one frame in every_frames).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
